@@ -1,0 +1,41 @@
+//! Hex8 element: shape functions, precomputed geometry, internal-force kernels
+//! (one-point with Flanagan–Belytschko hourglass control, full 2×2×2), lumped mass and
+//! the stable time step.
+
+pub mod hex8_full;
+pub mod hex8_shape;
+pub mod hex8_uniform;
+pub mod lumped_mass;
+pub mod stable_step;
+
+use serde::Deserialize;
+
+/// Integration rule of a region's hex8 elements.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Deserialize, Default)]
+#[serde(rename_all = "snake_case")]
+pub enum Integration {
+    /// One point at the centre with the uniform-strain (mean) gradient and
+    /// Flanagan–Belytschko hourglass control.
+    #[default]
+    OnePoint,
+    /// Full 2×2×2 Gauss integration.
+    Full,
+}
+
+impl Integration {
+    /// Integration points per element.
+    pub fn points(self) -> usize {
+        match self {
+            Integration::OnePoint => 1,
+            Integration::Full => 8,
+        }
+    }
+
+    /// Name used in outputs.
+    pub fn name(self) -> &'static str {
+        match self {
+            Integration::OnePoint => "one_point",
+            Integration::Full => "full",
+        }
+    }
+}

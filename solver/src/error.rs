@@ -1,0 +1,89 @@
+//! Typed errors with context: the file, the field path, the value and what was expected;
+//! the element, node or step where a run failed.
+
+use thiserror::Error;
+
+/// Every failure the solver reports. Bad input never panics: it ends here.
+#[derive(Debug, Error)]
+pub enum DcfmError {
+    /// A field of the input has a value outside what the model accepts.
+    #[error("{file}: {field} = {value}: {expected}")]
+    InvalidInput {
+        file: String,
+        field: String,
+        value: String,
+        expected: String,
+    },
+    /// The input could not be parsed at all (syntax, unknown field, wrong type).
+    #[error("{file}: {message}")]
+    Parse { file: String, message: String },
+    /// An I/O failure on a named file.
+    #[error("{file}: {source}")]
+    Io {
+        file: String,
+        #[source]
+        source: std::io::Error,
+    },
+    /// An element whose geometry cannot be used (inverted, degenerate).
+    #[error("element {element}: {reason}")]
+    BadElement { element: usize, reason: String },
+    /// A mesh-level inconsistency (unknown set, node index out of range, ...).
+    #[error("mesh: {0}")]
+    Mesh(String),
+    /// The requested time step is above the stable one.
+    #[error(
+        "time step {requested:.4e} s exceeds the stable step {stable:.4e} s \
+         (safety factor included), limited by element {element} \
+         (characteristic length {length:.4e} m, wave speed {speed:.1} m/s)"
+    )]
+    TimeStepTooLarge {
+        requested: f64,
+        stable: f64,
+        element: usize,
+        length: f64,
+        speed: f64,
+    },
+    /// The run went unstable; names the step, the place and the likely cause.
+    #[error("run went unstable at step {step} (t = {time:.6e} s): {what} at node {node}; likely cause: {cause}")]
+    Unstable {
+        step: u64,
+        time: f64,
+        node: usize,
+        what: String,
+        cause: String,
+    },
+    /// A contact interface could not be set up or its solve did not settle.
+    #[error("interface '{interface}': {message}")]
+    Contact { interface: String, message: String },
+    /// A material parameter set that the model cannot accept.
+    #[error("material '{material}': {message}")]
+    Material { material: String, message: String },
+}
+
+/// Result alias used across the crate.
+pub type Result<T> = std::result::Result<T, DcfmError>;
+
+impl DcfmError {
+    /// Shorthand for [`DcfmError::InvalidInput`].
+    pub fn invalid(
+        file: impl Into<String>,
+        field: impl Into<String>,
+        value: impl std::fmt::Display,
+        expected: impl Into<String>,
+    ) -> Self {
+        DcfmError::InvalidInput {
+            file: file.into(),
+            field: field.into(),
+            value: value.to_string(),
+            expected: expected.into(),
+        }
+    }
+
+    /// Wrap an I/O error with the file it concerns.
+    pub fn io(file: impl Into<String>, source: std::io::Error) -> Self {
+        DcfmError::Io {
+            file: file.into(),
+            source,
+        }
+    }
+}

@@ -1,0 +1,105 @@
+//! Constitutive models and their per-integration-point state.
+//!
+//! Every model maps a total small strain ε (Voigt xx, yy, zz, xy, yz, zx; engineering
+//! shear strains; tension positive) and the point's state at the start of the step to the
+//! stress and the state at the end of the step. The element kernels only see
+//! [`Material::update`], so a new model plugs in without touching element code.
+//!
+//! State lives in [`PointStates`]: a fixed number of `f64` per integration point, in an
+//! old and a new buffer swapped at the end of every step.
+
+pub mod elastic;
+pub mod plastic_damage;
+mod point_states;
+
+pub use elastic::Elastic;
+pub use plastic_damage::PlasticDamage;
+pub use point_states::PointStates;
+
+/// Voigt 6-vector: xx, yy, zz, xy, yz, zx (engineering shear for strains).
+pub type Voigt = [f64; 6];
+
+/// What a material update may need to know about the point besides its strain.
+#[derive(Clone, Copy, Debug)]
+pub struct PointContext {
+    /// Characteristic length of the element (m), for fracture-energy regularisation.
+    pub char_length: f64,
+    /// Time step (s), for viscous regularisation.
+    pub dt: f64,
+}
+
+/// A constitutive model, chosen per region. Enum dispatch keeps the element loop
+/// monomorphic and inlinable.
+#[derive(Clone, Debug)]
+pub enum Material {
+    /// Isotropic linear elasticity.
+    Elastic(Elastic),
+    /// Lee–Fenves plastic-damage (3D after Omidi & Lotfi), eqs. (23)–(26).
+    PlasticDamage(Box<PlasticDamage>),
+}
+
+impl Material {
+    /// Isotropic elastic constants behind the model (initial stiffness E0 for damage models).
+    #[inline]
+    pub fn elastic(&self) -> &Elastic {
+        match self {
+            Material::Elastic(e) => e,
+            Material::PlasticDamage(p) => p.elastic(),
+        }
+    }
+
+    /// Mass density (kg/m³).
+    #[inline]
+    pub fn density(&self) -> f64 {
+        self.elastic().density
+    }
+
+    /// Number of `f64` state variables stored per integration point.
+    #[inline]
+    pub fn state_len(&self) -> usize {
+        match self {
+            Material::Elastic(_) => 0,
+            Material::PlasticDamage(p) => p.state_len(),
+        }
+    }
+
+    /// Write the virgin state of one point.
+    pub fn init_state(&self, state: &mut [f64]) {
+        match self {
+            Material::Elastic(_) => {}
+            Material::PlasticDamage(p) => p.init_state(state),
+        }
+    }
+
+    /// Stress at the end of the step from the total strain, updating the point's state
+    /// from `old` into `new` (both `state_len()` long).
+    #[inline]
+    pub fn update(
+        &self,
+        strain: &Voigt,
+        old: &[f64],
+        new: &mut [f64],
+        ctx: &PointContext,
+    ) -> Voigt {
+        match self {
+            Material::Elastic(e) => e.stress(strain),
+            Material::PlasticDamage(p) => p.update(strain, old, new, ctx),
+        }
+    }
+
+    /// Stress implied by a strain and an already-updated state (for output: no state change).
+    pub fn stress_from_state(&self, strain: &Voigt, state: &[f64]) -> Voigt {
+        match self {
+            Material::Elastic(e) => e.stress(strain),
+            Material::PlasticDamage(p) => p.stress_from_state(strain, state),
+        }
+    }
+
+    /// Scalar damage D of a point state (0 for models without damage).
+    pub fn damage(&self, state: &[f64]) -> f64 {
+        match self {
+            Material::Elastic(_) => 0.0,
+            Material::PlasticDamage(p) => p.damage(state),
+        }
+    }
+}

@@ -1,0 +1,1 @@
+//! Verification cases for dcfm.

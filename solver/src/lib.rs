@@ -7,9 +7,13 @@
 //! Data flow: case file → [`model::Model`] → static stage → dynamic stage
 //! ([`stage::dynamic`]) → outputs. See `docs/ARCHITECTURE.md`.
 
-pub mod error;
+pub mod boundary;
 pub mod element;
+pub mod error;
+pub mod load;
 pub mod material;
 pub mod mesh;
+pub mod model;
+pub mod stage;
 
 pub use error::{DcfmError, Result};

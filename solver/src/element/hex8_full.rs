@@ -61,17 +61,13 @@ impl FullGeometry {
     }
 }
 
-/// Internal force of one fully integrated element; material state of point g is
-/// `old[g*stride..]` → `new[g*stride..]`. Stiffness-proportional damping as in
-/// [`crate::element::hex8_uniform::internal_force`]. Returns the volume-averaged stress.
-#[allow(clippy::too_many_arguments)]
+/// Internal force of one fully integrated element; the material state of Gauss point g is
+/// `old[g*stride..]` → `new[g*stride..]`. Returns the volume-averaged stress.
 #[inline(always)]
 pub fn internal_force(
     geo: &FullGeometry,
     material: &Material,
     u: &[[f64; 3]; 8],
-    v: &[[f64; 3]; 8],
-    beta: f64,
     old: &[f64],
     new: &mut [f64],
     ctx: &PointContext,
@@ -84,14 +80,7 @@ pub fn internal_force(
         let eps = geo.strain(g, u);
         let range = g * stride..(g + 1) * stride;
         let sigma = material.update(&eps, &old[range.clone()], &mut new[range], ctx);
-        let mut s = sigma;
-        if beta > 0.0 {
-            let sd = material.elastic().stress(&geo.strain(g, v));
-            for i in 0..6 {
-                s[i] += beta * sd[i];
-            }
-        }
-        geo.add_forces(g, &s, f);
+        geo.add_forces(g, &sigma, f);
         for i in 0..6 {
             mean[i] += sigma[i] * geo.wdet[g];
         }

@@ -120,18 +120,14 @@ impl UniformGeometry {
     }
 }
 
-/// Internal force of one one-point element (eq. 1's K U term for a nonlinear material):
-/// strain from `u`, stress from the material (state `old` → `new`), plus — when
-/// `beta > 0` — the stiffness-proportional Rayleigh damping stress β E0 : ε̇ from `v`.
-/// Returns the stress (without damping).
-#[allow(clippy::too_many_arguments)]
+/// Internal force of one one-point element (the K U term of eq. 1 for a nonlinear
+/// material): strain from `u`, stress from the material (state `old` → `new`), nodal
+/// forces V Bᵀσ plus the hourglass forces. Returns the stress.
 #[inline(always)]
 pub fn internal_force(
     geo: &UniformGeometry,
     material: &Material,
     u: &[[f64; 3]; 8],
-    v: &[[f64; 3]; 8],
-    beta: f64,
     old: &[f64],
     new: &mut [f64],
     ctx: &PointContext,
@@ -139,22 +135,8 @@ pub fn internal_force(
 ) -> Voigt {
     let eps = geo.strain(u);
     let sigma = material.update(&eps, old, new, ctx);
-    let mut q = geo.hourglass_modes(u);
-    let mut s = sigma;
-    if beta > 0.0 {
-        let rate = geo.strain(v);
-        let sd = material.elastic().stress(&rate);
-        let qd = geo.hourglass_modes(v);
-        for i in 0..6 {
-            s[i] += beta * sd[i];
-        }
-        for al in 0..4 {
-            for i in 0..3 {
-                q[al][i] += beta * qd[al][i];
-            }
-        }
-    }
-    geo.forces(&s, &q, f);
+    let q = geo.hourglass_modes(u);
+    geo.forces(&sigma, &q, f);
     sigma
 }
 

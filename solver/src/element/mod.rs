@@ -2,6 +2,8 @@
 //! (one-point with Flanagan–Belytschko hourglass control, full 2×2×2), lumped mass and
 //! the stable time step.
 
+pub mod colouring;
+pub mod groups;
 pub mod hex8_full;
 pub mod hex8_shape;
 pub mod hex8_uniform;

@@ -1,0 +1,7 @@
+//! Loads: time functions, nodal loads and gravity.
+
+mod nodal;
+pub mod time_function;
+
+pub use nodal::{Gravity, NodalLoad};
+pub use time_function::TimeFunction;

@@ -1,0 +1,225 @@
+//! Scalar functions of time that scale loads and prescribed motions.
+
+use serde::Deserialize;
+
+use crate::error::{DcfmError, Result};
+
+/// A scalar history h(t). In case files: `{ type = "half_sine", amplitude = 0.1, period = 0.02 }`.
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(tag = "type", rename_all = "snake_case", deny_unknown_fields)]
+pub enum TimeFunction {
+    /// h = value.
+    Constant { value: f64 },
+    /// h = rate · (t − start) after `start`, 0 before.
+    Ramp {
+        rate: f64,
+        #[serde(default)]
+        start: f64,
+    },
+    /// h = amplitude sin(π (t − start)/period) for start ≤ t ≤ start + period, else 0.
+    HalfSine {
+        amplitude: f64,
+        period: f64,
+        #[serde(default)]
+        start: f64,
+    },
+    /// h = amplitude sin(2π f t + phase).
+    Sine {
+        amplitude: f64,
+        frequency: f64,
+        #[serde(default)]
+        phase: f64,
+    },
+    /// h = amplitude for start ≤ t < start + duration, else 0.
+    Pulse {
+        amplitude: f64,
+        duration: f64,
+        #[serde(default)]
+        start: f64,
+    },
+    /// Piecewise-linear table; constant beyond its ends.
+    Table { times: Vec<f64>, values: Vec<f64> },
+}
+
+impl TimeFunction {
+    /// Check the parameters; `field` is the path of the function in the case file.
+    pub fn validate(&self, file: &str, field: &str) -> Result<()> {
+        let finite = |name: &str, v: f64| -> Result<()> {
+            if v.is_finite() {
+                Ok(())
+            } else {
+                Err(DcfmError::invalid(file, format!("{field}.{name}"), v, "must be finite"))
+            }
+        };
+        let positive = |name: &str, v: f64| -> Result<()> {
+            if v.is_finite() && v > 0.0 {
+                Ok(())
+            } else {
+                Err(DcfmError::invalid(file, format!("{field}.{name}"), v, "must be finite and > 0"))
+            }
+        };
+        match self {
+            TimeFunction::Constant { value } => finite("value", *value),
+            TimeFunction::Ramp { rate, start } => {
+                finite("rate", *rate)?;
+                finite("start", *start)
+            }
+            TimeFunction::HalfSine { amplitude, period, start } => {
+                finite("amplitude", *amplitude)?;
+                positive("period", *period)?;
+                finite("start", *start)
+            }
+            TimeFunction::Sine { amplitude, frequency, phase } => {
+                finite("amplitude", *amplitude)?;
+                positive("frequency", *frequency)?;
+                finite("phase", *phase)
+            }
+            TimeFunction::Pulse { amplitude, duration, start } => {
+                finite("amplitude", *amplitude)?;
+                positive("duration", *duration)?;
+                finite("start", *start)
+            }
+            TimeFunction::Table { times, values } => {
+                if times.is_empty() || times.len() != values.len() {
+                    return Err(DcfmError::invalid(
+                        file,
+                        format!("{field}.times"),
+                        format!("{} times, {} values", times.len(), values.len()),
+                        "non-empty and as many times as values",
+                    ));
+                }
+                for (i, w) in times.windows(2).enumerate() {
+                    if !(w[1] > w[0]) {
+                        return Err(DcfmError::invalid(
+                            file,
+                            format!("{field}.times[{}]", i + 1),
+                            w[1],
+                            "times must increase strictly",
+                        ));
+                    }
+                }
+                for (i, v) in times.iter().chain(values).enumerate() {
+                    if !v.is_finite() {
+                        return Err(DcfmError::invalid(file, format!("{field}[{i}]"), v, "must be finite"));
+                    }
+                }
+                Ok(())
+            }
+        }
+    }
+
+    /// h(t).
+    pub fn value(&self, t: f64) -> f64 {
+        match self {
+            TimeFunction::Constant { value } => *value,
+            TimeFunction::Ramp { rate, start } => {
+                if t > *start {
+                    rate * (t - start)
+                } else {
+                    0.0
+                }
+            }
+            TimeFunction::HalfSine { amplitude, period, start } => {
+                let s = t - start;
+                if (0.0..=*period).contains(&s) {
+                    amplitude * (std::f64::consts::PI * s / period).sin()
+                } else {
+                    0.0
+                }
+            }
+            TimeFunction::Sine { amplitude, frequency, phase } => {
+                amplitude * (2.0 * std::f64::consts::PI * frequency * t + phase).sin()
+            }
+            TimeFunction::Pulse { amplitude, duration, start } => {
+                if t >= *start && t < start + duration {
+                    *amplitude
+                } else {
+                    0.0
+                }
+            }
+            TimeFunction::Table { times, values } => {
+                let n = times.len();
+                if t <= times[0] {
+                    return values[0];
+                }
+                if t >= times[n - 1] {
+                    return values[n - 1];
+                }
+                let i = times.partition_point(|&x| x <= t) - 1;
+                let w = (t - times[i]) / (times[i + 1] - times[i]);
+                values[i] + w * (values[i + 1] - values[i])
+            }
+        }
+    }
+
+    /// ∫₀ᵗ h dτ (exact for the analytic forms, trapezoidal for tables) — used when a
+    /// velocity history must give a displacement.
+    pub fn integral(&self, t: f64) -> f64 {
+        use std::f64::consts::PI;
+        match self {
+            TimeFunction::Constant { value } => value * t,
+            TimeFunction::Ramp { rate, start } => {
+                if t > *start {
+                    0.5 * rate * (t - start).powi(2)
+                } else {
+                    0.0
+                }
+            }
+            TimeFunction::HalfSine { amplitude, period, start } => {
+                let s = (t - start).clamp(0.0, *period);
+                amplitude * period / PI * (1.0 - (PI * s / period).cos())
+            }
+            TimeFunction::Sine { amplitude, frequency, phase } => {
+                let w = 2.0 * PI * frequency;
+                amplitude / w * (phase.cos() - (w * t + phase).cos())
+            }
+            TimeFunction::Pulse { amplitude, duration, start } => {
+                amplitude * (t - start).clamp(0.0, *duration)
+            }
+            TimeFunction::Table { times, values } => {
+                let mut acc = 0.0;
+                let mut prev_t = 0.0f64.min(times[0]);
+                let mut prev_v = self.value(prev_t);
+                for (&ti, &vi) in times.iter().zip(values) {
+                    if ti >= t {
+                        break;
+                    }
+                    if ti > prev_t {
+                        acc += 0.5 * (prev_v + vi) * (ti - prev_t);
+                        prev_t = ti;
+                        prev_v = vi;
+                    }
+                }
+                if t > prev_t {
+                    acc += 0.5 * (prev_v + self.value(t)) * (t - prev_t);
+                }
+                acc
+            }
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn half_sine_integral_is_net_displacement() {
+        // VERIFICATION.md W1: net displacement 2 v0 T / π = 1.2732 mm for v0 0.1, T 0.02.
+        let h = TimeFunction::HalfSine { amplitude: 0.1, period: 0.02, start: 0.0 };
+        assert!((h.integral(1.0) - 1.2732e-3).abs() < 1e-7);
+        assert!((h.value(0.01) - 0.1).abs() < 1e-15);
+    }
+
+    #[test]
+    fn table_interpolates_and_integrates() {
+        let h = TimeFunction::Table { times: vec![0.0, 1.0, 2.0], values: vec![0.0, 2.0, 2.0] };
+        assert_eq!(h.value(0.5), 1.0);
+        assert!((h.integral(2.0) - 3.0).abs() < 1e-14);
+        assert!(TimeFunction::Table { times: vec![1.0, 1.0], values: vec![0.0, 1.0] }
+            .validate("c.toml", "loads[0].history")
+            .unwrap_err()
+            .to_string()
+            .contains("c.toml: loads[0].history.times[1] = 1"));
+    }
+}

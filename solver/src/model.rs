@@ -1,0 +1,195 @@
+//! The assembled model: mesh, element groups, masses, constraints, loads, damping and the
+//! stable time step — everything the stages need, built once and validated.
+
+use crate::boundary::Constraints;
+use crate::element::colouring::colour_elements;
+use crate::element::groups::ElementGroup;
+use crate::element::lumped_mass::element_masses;
+use crate::element::Integration;
+use crate::error::{DcfmError, Result};
+use crate::load::{Gravity, NodalLoad};
+use crate::material::Material;
+use crate::mesh::Mesh;
+
+/// How one region is discretised.
+#[derive(Clone, Debug)]
+pub struct RegionSetup {
+    /// Region name (as in the mesh).
+    pub region: String,
+    /// Its constitutive model.
+    pub material: Material,
+    /// Its integration rule.
+    pub integration: Integration,
+    /// Hourglass coefficient ε_hg (one-point elements).
+    pub hourglass: f64,
+}
+
+/// Rayleigh damping C = αM + βK0.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Rayleigh {
+    /// Mass-proportional coefficient α (1/s).
+    pub alpha: f64,
+    /// Stiffness-proportional coefficient β (s).
+    pub beta: f64,
+}
+
+/// The stable time step and the element that limits it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct StableStep {
+    /// min_e L_e / c_p,e (s), without safety factor.
+    pub critical: f64,
+    /// Limiting element (global id).
+    pub element: usize,
+    /// Its characteristic length (m).
+    pub length: f64,
+    /// Its P-wave speed (m/s).
+    pub speed: f64,
+}
+
+/// The model.
+#[derive(Debug)]
+pub struct Model {
+    pub mesh: Mesh,
+    pub groups: Vec<ElementGroup>,
+    pub n_colours: usize,
+    /// Lumped nodal masses (kg).
+    pub mass: Vec<f64>,
+    /// 1/M per node, 0 where all three DOFs are constrained (infinite mass for contact).
+    pub inv_mass: Vec<f64>,
+    pub constraints: Constraints,
+    pub nodal_loads: Vec<NodalLoad>,
+    pub gravity: Option<Gravity>,
+    pub damping: Rayleigh,
+    /// Initial velocities: (nodes, value).
+    pub initial_velocity: Vec<(Vec<u32>, [f64; 3])>,
+    pub stable: StableStep,
+}
+
+impl Model {
+    /// Assemble a model. Every region of the mesh must have a setup; every node must belong
+    /// to an element.
+    pub fn new(mesh: Mesh, regions: &[RegionSetup], file: &str) -> Result<Self> {
+        mesh.validate()?;
+        let colours = colour_elements(&mesh.elements, mesh.n_nodes());
+        let n_colours = colours.iter().copied().max().map_or(0, |c| c as usize + 1);
+        let mut groups = Vec::new();
+        for (r, name) in mesh.region_names.iter().enumerate() {
+            let Some(setup) = regions.iter().find(|s| &s.region == name) else {
+                return Err(DcfmError::invalid(
+                    file,
+                    "regions",
+                    name,
+                    "every mesh region needs a [[regions]] entry naming its material",
+                ));
+            };
+            if !(setup.hourglass.is_finite() && (0.0..=0.5).contains(&setup.hourglass)) {
+                return Err(DcfmError::invalid(
+                    file,
+                    format!("regions.{name}.hourglass"),
+                    setup.hourglass,
+                    "must be in [0, 0.5]",
+                ));
+            }
+            groups.push(ElementGroup::new(
+                &mesh,
+                r,
+                setup.material.clone(),
+                setup.integration,
+                setup.hourglass,
+                &colours,
+            )?);
+        }
+        for s in regions {
+            if mesh.region_index(&s.region).is_none() {
+                return Err(DcfmError::invalid(
+                    file,
+                    "regions",
+                    &s.region,
+                    format!("no such region in the mesh (regions: {:?})", mesh.region_names),
+                ));
+            }
+        }
+        let mut mass = vec![0.0; mesh.n_nodes()];
+        for g in &groups {
+            let rho = g.material.density();
+            for &e in &g.elements {
+                let m = element_masses(&mesh.element_coords(e as usize), rho);
+                for (a, &n) in mesh.elements[e as usize].iter().enumerate() {
+                    mass[n as usize] += m[a];
+                }
+            }
+        }
+        if let Some(n) = mass.iter().position(|&m| !(m > 0.0)) {
+            return Err(DcfmError::Mesh(format!("node {n} belongs to no element (zero mass)")));
+        }
+        let mut stable = StableStep {
+            critical: f64::INFINITY,
+            element: 0,
+            length: 0.0,
+            speed: 0.0,
+        };
+        for g in &groups {
+            let c = g.material.elastic().p_wave_speed();
+            for (le, &l) in g.char_length.iter().enumerate() {
+                if l / c < stable.critical {
+                    stable = StableStep {
+                        critical: l / c,
+                        element: g.elements[le] as usize,
+                        length: l,
+                        speed: c,
+                    };
+                }
+            }
+        }
+        let n = mesh.n_nodes();
+        Ok(Self {
+            mesh,
+            groups,
+            n_colours,
+            inv_mass: mass.iter().map(|m| 1.0 / m).collect(),
+            mass,
+            constraints: Constraints::new(n),
+            nodal_loads: Vec::new(),
+            gravity: None,
+            damping: Rayleigh::default(),
+            initial_velocity: Vec::new(),
+            stable,
+        })
+    }
+
+    /// Recompute `inv_mass` after constraints change: 0 where all DOFs are constrained.
+    pub fn refresh_inverse_mass(&mut self) {
+        for (i, w) in self.inv_mass.iter_mut().enumerate() {
+            *w = if self.constraints.constrained[i] == 0b111 {
+                0.0
+            } else {
+                1.0 / self.mass[i]
+            };
+        }
+    }
+
+    /// Number of elements.
+    pub fn n_elements(&self) -> usize {
+        self.mesh.n_elements()
+    }
+
+    /// Bytes per element held by the element groups (geometry, connectivity, state),
+    /// weighted over the groups.
+    pub fn bytes_per_element(&self) -> f64 {
+        let total: f64 = self
+            .groups
+            .iter()
+            .map(|g| g.bytes_per_element() * g.len() as f64)
+            .sum();
+        total / self.n_elements().max(1) as f64
+    }
+
+    /// Critical step reduced by stiffness-proportional damping:
+    /// Δt ≤ (2/ω)(√(1+ξ²) − ξ) with ω = 2/Δt_crit and ξ = βω/2 (Belytschko et al. 2000, eq. 6.2.23).
+    pub fn critical_step_with_damping(&self) -> f64 {
+        let dt = self.stable.critical;
+        let omega = 2.0 / dt;
+        let xi = 0.5 * self.damping.beta * omega;
+        (2.0 / omega) * ((1.0 + xi * xi).sqrt() - xi)
+    }
+}

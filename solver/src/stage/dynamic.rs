@@ -1,0 +1,435 @@
+//! The explicit dynamic stage: central difference in leapfrog form with the dynamic
+//! contact force correction.
+//!
+//! The paper writes the scheme as a predictor Ū^{t+Δt} (eq. 4) that ignores contact, a
+//! correction U^{t+Δt} = Ū^{t+Δt} + Δt²/2 M⁻¹ R^t (eq. 2) and a velocity (eq. 3). Eq. (3)
+//! read literally with eq. (4) has the amplification |λ|² = 1 + ω²Δt²/2 > 1 for an
+//! undamped oscillator, i.e. it is unstable; the stable central-difference trajectory with
+//! the same predictor/corrector structure is the leapfrog form used here:
+//!
+//! ```text
+//! V̄^{n+½} = V^{n−½} + Δt M⁻¹ (Fⁿ − f_int(Uⁿ) − C V^{n−½})     (predictor, eq. 4)
+//! Ū^{n+1} = Uⁿ + Δt V̄^{n+½}
+//! U^{n+1} = Ū^{n+1} + Δt² M⁻¹ Rⁿ,  V^{n+½} = V̄^{n+½} + Δt M⁻¹ Rⁿ  (correction, eqs. 2–3)
+//! ```
+//!
+//! The contact force that closes a gap in one step is then R = (Ū_j − Ū_i)/((wᵢ+wⱼ)Δt²)
+//! instead of the paper's 2MᵢMⱼ/((Mᵢ+Mⱼ)Δt²) factor — the same physical force
+//! (VERIFICATION.md W9), see docs/ARCHITECTURE.md.
+
+use rayon::prelude::*;
+
+use crate::element::groups::ForceSettings;
+use crate::error::{DcfmError, Result};
+use crate::model::Model;
+use crate::stage::energy::{EnergyParts, Energies};
+
+/// Nodes per chunk of the node loops: fixed, so that reductions are summed in the same
+/// order whatever the number of threads.
+const NODE_CHUNK: usize = 1024;
+
+/// Per-chunk result of the node pass.
+#[derive(Clone, Copy, Debug, Default)]
+struct ChunkResult {
+    parts: EnergyParts,
+    vmax: f64,
+    vmax_node: u32,
+    nonfinite: bool,
+}
+
+/// A model in motion: displacements Uⁿ, half-step velocities V^{n−½}, energies and the
+/// scratch buffers of the step (allocated once).
+pub struct Simulation {
+    pub model: Model,
+    /// Time step (s).
+    pub dt: f64,
+    /// Steps done.
+    pub step: u64,
+    /// Time tⁿ (s).
+    pub time: f64,
+    /// Displacements Uⁿ (m).
+    pub u: Vec<[f64; 3]>,
+    /// Half-step velocities V^{n−½} (m/s).
+    pub v: Vec<[f64; 3]>,
+    /// Accelerations of the last step (V^{n+½} − V^{n−½})/Δt (m/s²).
+    pub a: Vec<[f64; 3]>,
+    /// Energies at the last completed step.
+    pub energies: Energies,
+    u_next: Vec<[f64; 3]>,
+    v_next: Vec<[f64; 3]>,
+    f_int: Vec<[f64; 3]>,
+    f_damp: Vec<[f64; 3]>,
+    f_ext: Vec<[f64; 3]>,
+    loaded_nodes: Vec<u32>,
+    /// Contact forces Rⁿ (zero except at the nodes listed in `contact_nodes`).
+    r: Vec<[f64; 3]>,
+    contact_nodes: Vec<u32>,
+    /// Index into `model.constraints.prescribed` for each node DOF (u32::MAX: none).
+    prescribed_of: Vec<[u32; 3]>,
+    chunks: Vec<ChunkResult>,
+}
+
+impl Simulation {
+    /// Start from rest (plus the model's initial velocities) with time step `dt`, which
+    /// must not exceed `safety` × the critical step (damping included).
+    pub fn new(model: Model, dt: f64, safety: f64) -> Result<Self> {
+        let stable = safety * model.critical_step_with_damping();
+        if !(dt.is_finite() && dt > 0.0) {
+            return Err(DcfmError::invalid("", "time.dt", dt, "must be finite and > 0"));
+        }
+        if dt > stable * (1.0 + 1e-12) {
+            return Err(DcfmError::TimeStepTooLarge {
+                requested: dt,
+                stable,
+                element: model.stable.element,
+                length: model.stable.length,
+                speed: model.stable.speed,
+            });
+        }
+        Ok(Self::new_unchecked(model, dt))
+    }
+
+    /// Like [`Simulation::new`] without the stability check (for tests that probe it).
+    pub fn new_unchecked(mut model: Model, dt: f64) -> Self {
+        model.refresh_inverse_mass();
+        let n = model.mesh.n_nodes();
+        let mut v = vec![[0.0; 3]; n];
+        for (nodes, value) in &model.initial_velocity {
+            for &i in nodes {
+                v[i as usize] = *value;
+            }
+        }
+        let mut prescribed_of = vec![[u32::MAX; 3]; n];
+        for (k, p) in model.constraints.prescribed.iter().enumerate() {
+            for &i in &p.nodes {
+                prescribed_of[i as usize][p.dof] = k as u32;
+            }
+        }
+        for (i, vi) in v.iter_mut().enumerate() {
+            for (d, c) in vi.iter_mut().enumerate() {
+                if model.constraints.fixed[i] & (1 << d) != 0 {
+                    *c = 0.0;
+                }
+            }
+        }
+        let mut loaded_nodes: Vec<u32> = model.nodal_loads.iter().flat_map(|l| l.nodes.iter().copied()).collect();
+        loaded_nodes.sort_unstable();
+        loaded_nodes.dedup();
+        let kinetic: f64 = v
+            .iter()
+            .zip(&model.mass)
+            .map(|(vi, m)| 0.5 * m * (vi[0] * vi[0] + vi[1] * vi[1] + vi[2] * vi[2]))
+            .sum();
+        let n_chunks = n.div_ceil(NODE_CHUNK);
+        Self {
+            dt,
+            step: 0,
+            time: 0.0,
+            u: vec![[0.0; 3]; n],
+            v,
+            a: vec![[0.0; 3]; n],
+            energies: Energies {
+                kinetic,
+                initial_kinetic: kinetic,
+                ..Default::default()
+            },
+            u_next: vec![[0.0; 3]; n],
+            v_next: vec![[0.0; 3]; n],
+            f_int: vec![[0.0; 3]; n],
+            f_damp: vec![[0.0; 3]; n],
+            f_ext: vec![[0.0; 3]; n],
+            loaded_nodes,
+            r: vec![[0.0; 3]; n],
+            contact_nodes: Vec::new(),
+            prescribed_of,
+            chunks: vec![ChunkResult::default(); n_chunks],
+            model,
+        }
+    }
+
+    /// Internal forces f_int(Uⁿ) (and β K0 V^{n−½}) of every element, colour by colour.
+    fn internal_forces(&mut self) {
+        let beta = self.model.damping.beta;
+        self.f_int.par_iter_mut().with_min_len(4096).for_each(|f| *f = [0.0; 3]);
+        if beta > 0.0 {
+            self.f_damp.par_iter_mut().with_min_len(4096).for_each(|f| *f = [0.0; 3]);
+        }
+        let settings = ForceSettings { beta, dt: self.dt };
+        for c in 0..self.model.n_colours {
+            for g in self.model.groups.iter_mut() {
+                g.add_colour_forces(c, &self.u, &self.v, settings, &mut self.f_int, &mut self.f_damp);
+            }
+        }
+    }
+
+    /// External nodal loads Fⁿ into `f_ext`.
+    fn external_forces(&mut self) {
+        for &i in &self.loaded_nodes {
+            self.f_ext[i as usize] = [0.0; 3];
+        }
+        for load in &self.model.nodal_loads {
+            let h = load.history.value(self.time);
+            for &i in &load.nodes {
+                for d in 0..3 {
+                    self.f_ext[i as usize][d] += load.force[d] * h;
+                }
+            }
+        }
+    }
+
+    /// One step tⁿ → tⁿ⁺¹, in this order:
+    /// 1. internal forces from Uⁿ (element kernels + material update), damping forces;
+    /// 2. external loads Fⁿ and gravity;
+    /// 3. predictor V̄^{n+½}, Ū^{n+1} for every node as if no contact existed (eq. 4), with
+    ///    fixed and prescribed DOFs imposed;
+    /// 4. contact forces Rⁿ from the predictor (eqs. 5–22) — none without interfaces;
+    /// 5. correction U^{n+1} = Ū + Δt² M⁻¹ R, V^{n+½} = V̄ + Δt M⁻¹ R (eqs. 2–3);
+    /// 6. energies at tⁿ, instability check, commit of material states.
+    pub fn step(&mut self) -> Result<()> {
+        // 1–2.
+        self.internal_forces();
+        self.external_forces();
+        // 3. Predictor + energies of the uncorrected motion, in fixed chunks.
+        let dt = self.dt;
+        let t = self.time;
+        let alpha = self.model.damping.alpha;
+        let gravity = self
+            .model
+            .gravity
+            .as_ref()
+            .map(|g| {
+                let h = g.history.value(t);
+                g.acceleration.map(|a| a * h)
+            })
+            .unwrap_or([0.0; 3]);
+        let model = &self.model;
+        let ctx = NodeContext {
+            dt,
+            t,
+            alpha,
+            gravity,
+            mass: &model.mass,
+            constrained: &model.constraints.constrained,
+            fixed: &model.constraints.fixed,
+            prescribed: &model.constraints.prescribed,
+            prescribed_of: &self.prescribed_of,
+            u: &self.u,
+            v: &self.v,
+            f_int: &self.f_int,
+            f_damp: &self.f_damp,
+            f_ext: &self.f_ext,
+        };
+        let n = self.u.len();
+        self.u_next
+            .par_chunks_mut(NODE_CHUNK)
+            .zip(self.v_next.par_chunks_mut(NODE_CHUNK))
+            .zip(self.chunks.par_iter_mut())
+            .enumerate()
+            .for_each(|(ci, ((un, vn), res))| {
+                let mut out = ChunkResult::default();
+                for (k, (ui, vi)) in un.iter_mut().zip(vn.iter_mut()).enumerate() {
+                    let i = ci * NODE_CHUNK + k;
+                    ctx.predict(i, ui, vi);
+                    let p = ctx.energy_parts(i, vi, &[0.0; 3]);
+                    for (s, x) in out.parts.iter_mut().zip(p) {
+                        *s += x;
+                    }
+                    let vm = vi[0].abs().max(vi[1].abs()).max(vi[2].abs());
+                    if !vm.is_finite() || !ui.iter().all(|x| x.is_finite()) {
+                        if !out.nonfinite {
+                            out.vmax_node = i as u32;
+                        }
+                        out.nonfinite = true;
+                    } else if vm > out.vmax && !out.nonfinite {
+                        out.vmax = vm;
+                        out.vmax_node = i as u32;
+                    }
+                }
+                *res = out;
+            });
+        debug_assert_eq!(n, self.u_next.len());
+        // 4–5. Contact correction at the touched nodes (with the energy fix-up).
+        let mut contact_fix: EnergyParts = [0.0; 6];
+        for &i in &self.contact_nodes {
+            let i = i as usize;
+            let w = self.model.inv_mass[i];
+            let before = ctx.energy_parts(i, &self.v_next[i], &[0.0; 3]);
+            for d in 0..3 {
+                self.u_next[i][d] += dt * dt * w * self.r[i][d];
+                self.v_next[i][d] += dt * w * self.r[i][d];
+            }
+            let after = ctx.energy_parts(i, &self.v_next[i], &self.r[i]);
+            for k in 0..6 {
+                contact_fix[k] += after[k] - before[k];
+            }
+        }
+        // 6. Energies, instability check.
+        let mut parts: EnergyParts = [0.0; 6];
+        let mut worst: Option<(u32, bool, f64)> = None;
+        for c in &self.chunks {
+            for k in 0..6 {
+                parts[k] += c.parts[k];
+            }
+            if c.nonfinite {
+                worst = Some((c.vmax_node, true, f64::NAN));
+                break;
+            }
+            if worst.is_none_or(|w| c.vmax > w.2) {
+                worst = Some((c.vmax_node, false, c.vmax));
+            }
+        }
+        for k in 0..6 {
+            parts[k] += contact_fix[k];
+        }
+        let e = &mut self.energies;
+        e.kinetic = parts[0];
+        e.internal += parts[1];
+        e.damping += parts[2];
+        e.contact -= parts[3];
+        e.external += parts[4];
+        e.input += parts[5];
+        if let Some((node, true, _)) = worst {
+            return Err(self.instability(node as usize, "non-finite displacement or velocity"));
+        }
+        if self.step > 20 && e.scale() > 0.0 && e.relative_residual() > 0.5 && e.kinetic > 0.5 * e.scale() {
+            let node = worst.map_or(0, |w| w.0 as usize);
+            return Err(self.instability(node, "energy balance lost (kinetic energy growing without input)"));
+        }
+        // Commit.
+        for (ai, (vn, vo)) in self.a.iter_mut().zip(self.v_next.iter().zip(&self.v)) {
+            for d in 0..3 {
+                ai[d] = (vn[d] - vo[d]) / dt;
+            }
+        }
+        std::mem::swap(&mut self.u, &mut self.u_next);
+        std::mem::swap(&mut self.v, &mut self.v_next);
+        for g in self.model.groups.iter_mut() {
+            g.states.commit();
+        }
+        self.step += 1;
+        self.time = (self.step as f64) * dt;
+        Ok(())
+    }
+
+    fn instability(&self, node: usize, what: &str) -> DcfmError {
+        let cause = if self.dt > self.model.critical_step_with_damping() {
+            format!(
+                "time step {:.3e} s above the critical step {:.3e} s (element {})",
+                self.dt,
+                self.model.critical_step_with_damping(),
+                self.model.stable.element
+            )
+        } else {
+            "an element inverted or a material update diverged near this node; \
+             reduce the time step or check the loads and the mesh there"
+                .to_string()
+        };
+        DcfmError::Unstable {
+            step: self.step,
+            time: self.time,
+            node,
+            what: what.to_string(),
+            cause,
+        }
+    }
+
+    /// Run `n` steps.
+    pub fn run_steps(&mut self, n: u64) -> Result<()> {
+        for _ in 0..n {
+            self.step()?;
+        }
+        Ok(())
+    }
+
+    /// Exact elastic strain energy of the current displacements (linear elastic groups).
+    pub fn elastic_strain_energy(&self) -> f64 {
+        self.model.groups.iter().map(|g| g.elastic_strain_energy(&self.u)).sum()
+    }
+
+    /// Full-step velocity estimate at tⁿ for output: the last half-step velocity V^{n−½}.
+    pub fn velocity(&self) -> &[[f64; 3]] {
+        &self.v
+    }
+
+    /// Internal force vector of the last step (for reactions and checks).
+    pub fn internal_force(&self) -> &[[f64; 3]] {
+        &self.f_int
+    }
+
+    /// Contact forces: set the nodes whose R may be non-zero this step and get the array
+    /// to fill (zeroed at those nodes of the previous step first).
+    pub fn contact_buffer(&mut self) -> (&mut Vec<u32>, &mut [[f64; 3]]) {
+        for &i in &self.contact_nodes {
+            self.r[i as usize] = [0.0; 3];
+        }
+        (&mut self.contact_nodes, &mut self.r)
+    }
+}
+
+/// Read-only data of the node pass.
+struct NodeContext<'a> {
+    dt: f64,
+    t: f64,
+    alpha: f64,
+    gravity: [f64; 3],
+    mass: &'a [f64],
+    constrained: &'a [u8],
+    fixed: &'a [u8],
+    prescribed: &'a [crate::boundary::Prescribed],
+    prescribed_of: &'a [[u32; 3]],
+    u: &'a [[f64; 3]],
+    v: &'a [[f64; 3]],
+    f_int: &'a [[f64; 3]],
+    f_damp: &'a [[f64; 3]],
+    f_ext: &'a [[f64; 3]],
+}
+
+impl NodeContext<'_> {
+    /// Force on DOF d of node i except the reaction: Fⁿ + M g − f_int − f_damp − αM V^{n−½} + R.
+    #[inline(always)]
+    fn applied_force(&self, i: usize, d: usize, r: &[f64; 3]) -> f64 {
+        let m = self.mass[i];
+        self.f_ext[i][d] + m * self.gravity[d] - self.f_int[i][d] - self.f_damp[i][d] - self.alpha * m * self.v[i][d] + r[d]
+    }
+
+    /// Predictor of node i (eq. 4): V̄^{n+½} and Ū^{n+1}, constraints imposed.
+    #[inline(always)]
+    fn predict(&self, i: usize, u_next: &mut [f64; 3], v_next: &mut [f64; 3]) {
+        let m = self.mass[i];
+        let c = self.constrained[i];
+        for d in 0..3 {
+            let vd = if c & (1 << d) == 0 {
+                self.v[i][d] + self.dt * self.applied_force(i, d, &[0.0; 3]) / m
+            } else if self.fixed[i] & (1 << d) != 0 {
+                0.0
+            } else {
+                let p = &self.prescribed[self.prescribed_of[i][d] as usize];
+                p.half_step_velocity(self.t, self.dt, self.u[i][d])
+            };
+            v_next[d] = vd;
+            u_next[d] = self.u[i][d] + self.dt * vd;
+        }
+    }
+
+    /// Energy parts of node i for the motion V^{n−½} → `v_next` with contact force `r`:
+    /// [kinetic at tⁿ, internal, damping, contact, external, input] increments.
+    #[inline(always)]
+    fn energy_parts(&self, i: usize, v_next: &[f64; 3], r: &[f64; 3]) -> EnergyParts {
+        let m = self.mass[i];
+        let mut p = [0.0; 6];
+        for d in 0..3 {
+            let vn = 0.5 * (self.v[i][d] + v_next[d]);
+            let ds = self.dt * vn;
+            p[0] += 0.5 * m * vn * vn;
+            p[1] += self.f_int[i][d] * ds;
+            p[2] += (self.f_damp[i][d] + self.alpha * m * self.v[i][d]) * ds;
+            p[3] += r[d] * ds;
+            p[4] += (self.f_ext[i][d] + m * self.gravity[d]) * ds;
+            if self.constrained[i] & (1 << d) != 0 {
+                let reaction = m * (v_next[d] - self.v[i][d]) / self.dt - self.applied_force(i, d, r);
+                p[5] += reaction * ds;
+            }
+        }
+        p
+    }
+}

@@ -1,0 +1,7 @@
+//! Analysis stages: the explicit dynamic driver and its energy accounting.
+
+pub mod dynamic;
+pub mod energy;
+
+pub use dynamic::Simulation;
+pub use energy::Energies;

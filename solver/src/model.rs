@@ -63,6 +63,8 @@ pub struct Model {
     /// Initial velocities: (nodes, value).
     pub initial_velocity: Vec<(Vec<u32>, [f64; 3])>,
     pub stable: StableStep,
+    /// (group, index in group) of every element.
+    pub element_location: Vec<(u32, u32)>,
 }
 
 impl Model {
@@ -141,8 +143,15 @@ impl Model {
                 }
             }
         }
+        let mut element_location = vec![(0, 0); mesh.n_elements()];
+        for (gi, g) in groups.iter().enumerate() {
+            for (le, &e) in g.elements.iter().enumerate() {
+                element_location[e as usize] = (gi as u32, le as u32);
+            }
+        }
         let n = mesh.n_nodes();
         Ok(Self {
+            element_location,
             mesh,
             groups,
             n_colours,
@@ -166,6 +175,12 @@ impl Model {
                 1.0 / self.mass[i]
             };
         }
+    }
+
+    /// Volume-averaged (strain, stress) of global element `e` for displacements `u`.
+    pub fn element_strain_stress(&self, e: usize, u: &[[f64; 3]]) -> (crate::material::Voigt, crate::material::Voigt) {
+        let (g, le) = self.element_location[e];
+        self.groups[g as usize].strain_stress_of(le as usize, u)
     }
 
     /// Number of elements.

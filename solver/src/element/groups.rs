@@ -249,41 +249,41 @@ impl ElementGroup {
         });
     }
 
-    /// Volume-averaged strain and stress of every element from displacements `u` and the
-    /// committed state (for output; changes nothing). Order: the group's element order.
-    pub fn element_strain_stress(&self, u: &[[f64; 3]]) -> Vec<(Voigt, Voigt)> {
+    /// Volume-averaged strain and stress of the group's element `le` from displacements
+    /// `u` and the committed state (changes nothing).
+    pub fn strain_stress_of(&self, le: usize, u: &[[f64; 3]]) -> (Voigt, Voigt) {
         let stride = self.states.stride();
         let state = self.states.current();
-        (0..self.len())
-            .into_par_iter()
-            .map(|le| {
-                let nodes = &self.conn[le];
-                let ue: [[f64; 3]; 8] = std::array::from_fn(|a| u[nodes[a] as usize]);
-                match &self.geometry {
-                    GroupGeometry::Uniform(g) => {
-                        let eps = g[le].strain(&ue);
-                        let s = &state[le * stride..(le + 1) * stride];
-                        (eps, self.material.stress_from_state(&eps, s))
-                    }
-                    GroupGeometry::Full(g) => {
-                        let mut em = [0.0; 6];
-                        let mut sm = [0.0; 6];
-                        let vol = g[le].volume();
-                        for gp in 0..8 {
-                            let eps = g[le].strain(gp, &ue);
-                            let p = le * 8 + gp;
-                            let s = self.material.stress_from_state(&eps, &state[p * stride..(p + 1) * stride]);
-                            let w = g[le].wdet[gp] / vol;
-                            for i in 0..6 {
-                                em[i] += w * eps[i];
-                                sm[i] += w * s[i];
-                            }
-                        }
-                        (em, sm)
+        let nodes = &self.conn[le];
+        let ue: [[f64; 3]; 8] = std::array::from_fn(|a| u[nodes[a] as usize]);
+        match &self.geometry {
+            GroupGeometry::Uniform(g) => {
+                let eps = g[le].strain(&ue);
+                let s = &state[le * stride..(le + 1) * stride];
+                (eps, self.material.stress_from_state(&eps, s))
+            }
+            GroupGeometry::Full(g) => {
+                let mut em = [0.0; 6];
+                let mut sm = [0.0; 6];
+                let vol = g[le].volume();
+                for gp in 0..8 {
+                    let eps = g[le].strain(gp, &ue);
+                    let p = le * 8 + gp;
+                    let s = self.material.stress_from_state(&eps, &state[p * stride..(p + 1) * stride]);
+                    let w = g[le].wdet[gp] / vol;
+                    for i in 0..6 {
+                        em[i] += w * eps[i];
+                        sm[i] += w * s[i];
                     }
                 }
-            })
-            .collect()
+                (em, sm)
+            }
+        }
+    }
+
+    /// [`ElementGroup::strain_stress_of`] for every element, in the group's order.
+    pub fn element_strain_stress(&self, u: &[[f64; 3]]) -> Vec<(Voigt, Voigt)> {
+        (0..self.len()).into_par_iter().map(|le| self.strain_stress_of(le, u)).collect()
     }
 
     /// Element-average damage D (0 for models without damage), in the group's order.

@@ -147,8 +147,10 @@ impl Simulation {
         }
     }
 
-    /// Internal forces f_int(Uⁿ) (and β K0 V^{n−½}) of every element, colour by colour.
-    fn internal_forces(&mut self) {
+    /// Internal forces f_int(Uⁿ) (and β K0 V^{n−½}) of every element, colour by colour,
+    /// into the internal-force buffer ([`Simulation::internal_force`]). Material states
+    /// are written to their pending buffer, not committed.
+    pub fn internal_forces(&mut self) {
         let beta = self.model.damping.beta;
         self.f_int.par_iter_mut().with_min_len(4096).for_each(|f| *f = [0.0; 3]);
         if beta > 0.0 {

@@ -1,0 +1,5 @@
+//! Closed-form reference solutions, validated on construction.
+
+pub mod dalembert;
+
+pub use dalembert::HalfSinePulse1D;

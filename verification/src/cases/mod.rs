@@ -1,0 +1,19 @@
+//! Registered verification cases: one file per case, each with a header giving its goal,
+//! sketch, boundary conditions, parameters, reference and tolerance.
+
+use dcfm::Result;
+
+use crate::record::CheckRow;
+
+pub mod w01_wave_pulses;
+
+/// A registered case: name and the function that runs it.
+pub struct Case {
+    pub id: &'static str,
+    pub run: fn() -> Result<Vec<CheckRow>>,
+}
+
+/// Every case the runner executes, in report order.
+pub fn all() -> Vec<Case> {
+    vec![Case { id: "W1", run: w01_wave_pulses::run }]
+}

@@ -1,0 +1,3 @@
+//! Model builders shared by the cases.
+
+pub mod column;

@@ -115,11 +115,7 @@ impl Simulation {
         let mut loaded_nodes: Vec<u32> = model.nodal_loads.iter().flat_map(|l| l.nodes.iter().copied()).collect();
         loaded_nodes.sort_unstable();
         loaded_nodes.dedup();
-        let kinetic: f64 = v
-            .iter()
-            .zip(&model.mass)
-            .map(|(vi, m)| 0.5 * m * (vi[0] * vi[0] + vi[1] * vi[1] + vi[2] * vi[2]))
-            .sum();
+        let kinetic = kinetic_energy(&v, &model.mass);
         let n_chunks = n.div_ceil(NODE_CHUNK);
         Self {
             dt,
@@ -145,6 +141,17 @@ impl Simulation {
             chunks: vec![ChunkResult::default(); n_chunks],
             model,
         }
+    }
+
+    /// Start the energy account afresh from the current velocities (after they were set
+    /// by hand, e.g. an initial velocity field that no node set describes).
+    pub fn restart_energy_account(&mut self) {
+        let k = kinetic_energy(&self.v, &self.model.mass);
+        self.energies = Energies {
+            kinetic: k,
+            initial_kinetic: k,
+            ..Default::default()
+        };
     }
 
     /// Internal forces f_int(Uⁿ) (and β K0 V^{n−½}) of every element, colour by colour,
@@ -366,6 +373,14 @@ impl Simulation {
         }
         (&mut self.contact_nodes, &mut self.r)
     }
+}
+
+/// ½ Σ M |v|².
+fn kinetic_energy(v: &[[f64; 3]], mass: &[f64]) -> f64 {
+    v.iter()
+        .zip(mass)
+        .map(|(vi, m)| 0.5 * m * (vi[0] * vi[0] + vi[1] * vi[1] + vi[2] * vi[2]))
+        .sum()
 }
 
 /// Read-only data of the node pass.

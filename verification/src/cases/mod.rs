@@ -5,7 +5,10 @@ use dcfm::Result;
 
 use crate::record::CheckRow;
 
+pub mod energy_conservation;
+pub mod patch_test;
 pub mod w01_wave_pulses;
+pub mod w13_stable_step;
 
 /// A registered case: name and the function that runs it.
 pub struct Case {
@@ -15,5 +18,10 @@ pub struct Case {
 
 /// Every case the runner executes, in report order.
 pub fn all() -> Vec<Case> {
-    vec![Case { id: "W1", run: w01_wave_pulses::run }]
+    vec![
+        Case { id: "W1", run: w01_wave_pulses::run },
+        Case { id: "patch", run: patch_test::run },
+        Case { id: "energy", run: energy_conservation::run },
+        Case { id: "W13", run: w13_stable_step::run },
+    ]
 }

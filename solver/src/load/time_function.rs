@@ -23,6 +23,14 @@ pub enum TimeFunction {
         #[serde(default)]
         start: f64,
     },
+    /// h = amplitude sin²(π (t − start)/period) for start ≤ t ≤ start + period, else 0
+    /// (a Hann pulse: smooth start and end).
+    SineSquared {
+        amplitude: f64,
+        period: f64,
+        #[serde(default)]
+        start: f64,
+    },
     /// h = amplitude sin(2π f t + phase).
     Sine {
         amplitude: f64,
@@ -65,6 +73,11 @@ impl TimeFunction {
                 finite("start", *start)
             }
             TimeFunction::HalfSine { amplitude, period, start } => {
+                finite("amplitude", *amplitude)?;
+                positive("period", *period)?;
+                finite("start", *start)
+            }
+            TimeFunction::SineSquared { amplitude, period, start } => {
                 finite("amplitude", *amplitude)?;
                 positive("period", *period)?;
                 finite("start", *start)
@@ -127,6 +140,14 @@ impl TimeFunction {
                     0.0
                 }
             }
+            TimeFunction::SineSquared { amplitude, period, start } => {
+                let s = t - start;
+                if (0.0..=*period).contains(&s) {
+                    amplitude * (std::f64::consts::PI * s / period).sin().powi(2)
+                } else {
+                    0.0
+                }
+            }
             TimeFunction::Sine { amplitude, frequency, phase } => {
                 amplitude * (2.0 * std::f64::consts::PI * frequency * t + phase).sin()
             }
@@ -168,6 +189,10 @@ impl TimeFunction {
             TimeFunction::HalfSine { amplitude, period, start } => {
                 let s = (t - start).clamp(0.0, *period);
                 amplitude * period / PI * (1.0 - (PI * s / period).cos())
+            }
+            TimeFunction::SineSquared { amplitude, period, start } => {
+                let s = (t - start).clamp(0.0, *period);
+                amplitude * (0.5 * s - period / (4.0 * PI) * (2.0 * PI * s / period).sin())
             }
             TimeFunction::Sine { amplitude, frequency, phase } => {
                 let w = 2.0 * PI * frequency;

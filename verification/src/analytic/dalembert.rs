@@ -1,6 +1,16 @@
 //! d'Alembert solution of a half-sine velocity pulse entering a 1D elastic column
 //! (VERIFICATION.md W1): v_base(t) = v0 sin(πt/T) for 0 ≤ t ≤ T.
 
+/// Shape of the base velocity pulse.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum PulseShape {
+    /// v0 sin(πs/T): the W1 pulse (velocity has corners at s = 0 and T).
+    #[default]
+    HalfSine,
+    /// v0 sin²(πs/T): a smooth (Hann) pulse for convergence-rate studies.
+    SineSquared,
+}
+
 /// Incident pulse in a column of wave speed `c` and impedance ρc.
 #[derive(Clone, Copy, Debug)]
 pub struct HalfSinePulse1D {
@@ -8,6 +18,7 @@ pub struct HalfSinePulse1D {
     pub period: f64,
     pub speed: f64,
     pub density: f64,
+    pub shape: PulseShape,
 }
 
 impl HalfSinePulse1D {
@@ -18,14 +29,24 @@ impl HalfSinePulse1D {
                 return Err(format!("{n} = {x}: must be finite and > 0"));
             }
         }
-        Ok(Self { v0, period, speed, density })
+        Ok(Self { v0, period, speed, density, shape: PulseShape::HalfSine })
+    }
+
+    /// The same pulse with another shape.
+    pub fn with_shape(mut self, shape: PulseShape) -> Self {
+        self.shape = shape;
+        self
     }
 
     /// Incident particle velocity at height z and time t (before any reflection).
     pub fn velocity(&self, z: f64, t: f64) -> f64 {
         let s = t - z / self.speed;
         if (0.0..=self.period).contains(&s) {
-            self.v0 * (std::f64::consts::PI * s / self.period).sin()
+            let v = (std::f64::consts::PI * s / self.period).sin();
+            match self.shape {
+                PulseShape::HalfSine => self.v0 * v,
+                PulseShape::SineSquared => self.v0 * v * v,
+            }
         } else {
             0.0
         }
@@ -33,8 +54,14 @@ impl HalfSinePulse1D {
 
     /// Incident displacement at height z and time t: ∫ v dt.
     pub fn displacement(&self, z: f64, t: f64) -> f64 {
+        use std::f64::consts::PI;
         let s = (t - z / self.speed).clamp(0.0, self.period);
-        self.v0 * self.period / std::f64::consts::PI * (1.0 - (std::f64::consts::PI * s / self.period).cos())
+        match self.shape {
+            PulseShape::HalfSine => self.v0 * self.period / PI * (1.0 - (PI * s / self.period).cos()),
+            PulseShape::SineSquared => {
+                self.v0 * (0.5 * s - self.period / (4.0 * PI) * (2.0 * PI * s / self.period).sin())
+            }
+        }
     }
 
     /// Peak stress magnitude of the incident wave, ρ c v0.
@@ -42,9 +69,12 @@ impl HalfSinePulse1D {
         self.density * self.speed * self.v0
     }
 
-    /// Net displacement after the pulse has passed, 2 v0 T / π.
+    /// Net displacement after the pulse has passed: 2 v0 T / π (half sine), v0 T / 2 (sin²).
     pub fn net_displacement(&self) -> f64 {
-        2.0 * self.v0 * self.period / std::f64::consts::PI
+        match self.shape {
+            PulseShape::HalfSine => 2.0 * self.v0 * self.period / std::f64::consts::PI,
+            PulseShape::SineSquared => 0.5 * self.v0 * self.period,
+        }
     }
 }
 

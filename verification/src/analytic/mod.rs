@@ -2,4 +2,4 @@
 
 pub mod dalembert;
 
-pub use dalembert::HalfSinePulse1D;
+pub use dalembert::{HalfSinePulse1D, PulseShape};

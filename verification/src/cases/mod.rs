@@ -5,6 +5,7 @@ use dcfm::Result;
 
 use crate::record::CheckRow;
 
+pub mod convergence_w01;
 pub mod energy_conservation;
 pub mod patch_test;
 pub mod w01_wave_pulses;
@@ -20,6 +21,7 @@ pub struct Case {
 pub fn all() -> Vec<Case> {
     vec![
         Case { id: "W1", run: w01_wave_pulses::run },
+        Case { id: "W1-conv", run: convergence_w01::run },
         Case { id: "patch", run: patch_test::run },
         Case { id: "energy", run: energy_conservation::run },
         Case { id: "W13", run: w13_stable_step::run },

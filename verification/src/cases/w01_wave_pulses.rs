@@ -52,7 +52,9 @@ pub struct ColumnMeasures {
 pub fn measure(setup: &ColumnSetup) -> Result<ColumnMeasures> {
     let mut sim = setup.build()?;
     let c = setup.speed();
-    let pulse = HalfSinePulse1D::new(setup.v0, setup.period, c, setup.density).expect("valid pulse");
+    let pulse = HalfSinePulse1D::new(setup.v0, setup.period, c, setup.density)
+        .expect("valid pulse")
+        .with_shape(setup.shape);
     let h = setup.height;
     let (dof, stress_index) = match setup.wave {
         Wave::P => (2, 2),

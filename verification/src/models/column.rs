@@ -18,6 +18,8 @@ use dcfm::model::{Model, RegionSetup};
 use dcfm::stage::Simulation;
 use dcfm::Result;
 
+use crate::analytic::PulseShape;
+
 /// Which wave the column carries.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Wave {
@@ -46,6 +48,7 @@ pub struct ColumnSetup {
     pub courant_p: f64,
     pub v0: f64,
     pub period: f64,
+    pub shape: PulseShape,
     pub young: f64,
     pub poisson: f64,
     pub density: f64,
@@ -63,6 +66,7 @@ impl ColumnSetup {
             courant_p: 0.9,
             v0: 0.1,
             period: 0.02,
+            shape: PulseShape::HalfSine,
             young: 20e9,
             poisson: 0.25,
             density: 2700.0,
@@ -108,7 +112,12 @@ impl ColumnSetup {
                 nodes: base,
                 dof,
                 kind: MotionKind::Velocity,
-                history: TimeFunction::HalfSine { amplitude: self.v0, period: self.period, start: 0.0 },
+                history: match self.shape {
+                    PulseShape::HalfSine => TimeFunction::HalfSine { amplitude: self.v0, period: self.period, start: 0.0 },
+                    PulseShape::SineSquared => {
+                        TimeFunction::SineSquared { amplitude: self.v0, period: self.period, start: 0.0 }
+                    }
+                },
             })
             .map_err(|n| dcfm::DcfmError::Mesh(format!("node {n} constrained twice")))?;
         let dt = self.courant_p * model.stable.critical;

@@ -8,6 +8,7 @@
 //! ([`stage::dynamic`]) → outputs. See `docs/ARCHITECTURE.md`.
 
 pub mod boundary;
+pub mod case;
 pub mod element;
 pub mod error;
 pub mod load;

@@ -3,12 +3,21 @@
 
 use crate::material::{Elastic, PointContext, Voigt};
 
+#[derive(Clone, Debug, serde::Deserialize, PartialEq)]
+pub struct PlasticDamageParams {}
+
 #[derive(Clone, Debug)]
 pub struct PlasticDamage {
     elastic: Elastic,
 }
 
 impl PlasticDamage {
+    pub fn new(_n: &str, elastic: Elastic, _p: &PlasticDamageParams) -> crate::Result<Self> {
+        Ok(Self { elastic })
+    }
+    pub fn max_element_size(&self) -> f64 {
+        f64::INFINITY
+    }
     pub fn elastic(&self) -> &Elastic {
         &self.elastic
     }

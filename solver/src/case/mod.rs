@@ -1,0 +1,11 @@
+//! The TOML case format (serde schema) and its translation into a validated [`Model`].
+//!
+//! Every problem with the input becomes a [`DcfmError`] naming the file, the field path, the
+//! value and what was expected; nothing panics. The format is documented with examples in
+//! `docs/case_format.md`.
+
+mod build;
+mod schema;
+
+pub use build::{load_case, parse_case, Case};
+pub use schema::*;

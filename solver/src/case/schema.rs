@@ -1,0 +1,257 @@
+//! Serde types of the case file. Unknown fields are rejected.
+
+use std::collections::BTreeMap;
+
+use serde::Deserialize;
+
+use crate::boundary::MotionKind;
+use crate::element::Integration;
+use crate::load::TimeFunction;
+use crate::mesh::{BlockSpec, BoxMeshSpec};
+
+/// The whole case file.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct CaseFile {
+    /// Free text shown in outputs.
+    #[serde(default)]
+    pub title: String,
+    pub time: TimeSection,
+    #[serde(default)]
+    pub output: OutputSection,
+    pub mesh: MeshSection,
+    pub materials: BTreeMap<String, MaterialSection>,
+    pub regions: Vec<RegionSection>,
+    #[serde(default)]
+    pub node_sets: BTreeMap<String, NodeSetSection>,
+    #[serde(default)]
+    pub boundary: BoundarySection,
+    #[serde(default)]
+    pub loads: LoadSection,
+    #[serde(default)]
+    pub damping: DampingSection,
+    #[serde(default)]
+    pub initial: InitialSection,
+}
+
+/// `[time]`.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct TimeSection {
+    /// End time (s).
+    pub end: f64,
+    /// Time step (s); default: `safety` × the critical step.
+    #[serde(default)]
+    pub dt: Option<f64>,
+    /// Safety factor on the critical step.
+    #[serde(default = "default_safety")]
+    pub safety: f64,
+}
+
+fn default_safety() -> f64 {
+    0.9
+}
+
+/// `[output]`.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct OutputSection {
+    /// Write a VTU file every this many steps (0: only the last step).
+    #[serde(default)]
+    pub vtu_every: u64,
+    /// Write a row of histories every this many steps.
+    #[serde(default = "one")]
+    pub history_every: u64,
+    /// Nodes whose displacement, velocity and acceleration go to histories.csv.
+    #[serde(default)]
+    pub nodes: Vec<u32>,
+    /// Elements whose stress goes to histories.csv.
+    #[serde(default)]
+    pub elements: Vec<u32>,
+    /// Write a checkpoint every this many steps (0: never), for `dcfm run --resume`.
+    #[serde(default)]
+    pub checkpoint_every: u64,
+}
+
+impl Default for OutputSection {
+    fn default() -> Self {
+        Self {
+            vtu_every: 0,
+            history_every: 1,
+            nodes: Vec::new(),
+            elements: Vec::new(),
+            checkpoint_every: 0,
+        }
+    }
+}
+
+fn one() -> u64 {
+    1
+}
+
+/// `[mesh]`: either a Gmsh file or structured blocks.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MeshSection {
+    /// Gmsh 4.1 file, relative to the case file.
+    #[serde(default)]
+    pub gmsh: Option<String>,
+    /// Structured blocks.
+    #[serde(default)]
+    pub blocks: Vec<BlockSpec>,
+    /// Region pairs whose shared nodes are duplicated (contact interfaces).
+    #[serde(default)]
+    pub split: Vec<[String; 2]>,
+    /// Relative node-merge tolerance for blocks.
+    #[serde(default)]
+    pub merge_tolerance: Option<f64>,
+}
+
+impl MeshSection {
+    /// The block mesh spec, if blocks are given.
+    pub fn box_spec(&self) -> BoxMeshSpec {
+        BoxMeshSpec {
+            blocks: self.blocks.clone(),
+            split: self.split.clone(),
+            merge_tolerance: self.merge_tolerance.unwrap_or(1e-6),
+        }
+    }
+}
+
+/// Constitutive model name.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum ModelKind {
+    Elastic,
+    PlasticDamage,
+}
+
+/// `[materials.NAME]`.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct MaterialSection {
+    pub model: ModelKind,
+    /// Young's modulus (Pa).
+    pub young: f64,
+    /// Poisson's ratio.
+    pub poisson: f64,
+    /// Density (kg/m³).
+    pub density: f64,
+    /// Parameters of the plastic-damage model (model = "plastic_damage").
+    #[serde(default)]
+    pub plastic_damage: Option<crate::material::plastic_damage::PlasticDamageParams>,
+}
+
+/// `[[regions]]`.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct RegionSection {
+    pub name: String,
+    pub material: String,
+    #[serde(default)]
+    pub integration: Integration,
+    /// Hourglass coefficient ε_hg (one-point).
+    #[serde(default = "default_hourglass")]
+    pub hourglass: f64,
+}
+
+fn default_hourglass() -> f64 {
+    0.05
+}
+
+/// `[node_sets.NAME]`: explicit nodes or the nodes inside a box.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NodeSetSection {
+    #[serde(default)]
+    pub nodes: Vec<u32>,
+    /// `[[x0, y0, z0], [x1, y1, z1]]`: nodes with x0 ≤ x ≤ x1 etc. (inclusive, 1e-9 slack).
+    #[serde(default, rename = "box")]
+    pub bounds: Option<[[f64; 3]; 2]>,
+}
+
+/// `[boundary]`.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct BoundarySection {
+    #[serde(default)]
+    pub fixed: Vec<FixedSection>,
+    #[serde(default)]
+    pub prescribed: Vec<PrescribedSection>,
+}
+
+/// `[[boundary.fixed]]`.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct FixedSection {
+    /// Node set, face set, element set or region.
+    pub set: String,
+    /// Any of "x", "y", "z", e.g. "xyz" or "z".
+    pub dofs: String,
+}
+
+/// `[[boundary.prescribed]]`.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct PrescribedSection {
+    pub set: String,
+    /// "x", "y" or "z".
+    pub dof: String,
+    pub kind: MotionKind,
+    pub history: TimeFunction,
+}
+
+/// `[loads]`.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct LoadSection {
+    #[serde(default)]
+    pub nodal: Vec<NodalLoadSection>,
+    #[serde(default)]
+    pub gravity: Option<GravitySection>,
+}
+
+/// `[[loads.nodal]]`: `force` on every node of `set`, times `history` (default 1).
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct NodalLoadSection {
+    pub set: String,
+    pub force: [f64; 3],
+    #[serde(default)]
+    pub history: Option<TimeFunction>,
+}
+
+/// `[loads.gravity]`.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct GravitySection {
+    pub acceleration: [f64; 3],
+    #[serde(default)]
+    pub history: Option<TimeFunction>,
+}
+
+/// `[damping]`: Rayleigh C = αM + βK0.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct DampingSection {
+    #[serde(default)]
+    pub alpha: f64,
+    #[serde(default)]
+    pub beta: f64,
+}
+
+/// `[initial]`.
+#[derive(Clone, Debug, Default, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct InitialSection {
+    #[serde(default)]
+    pub velocity: Vec<InitialVelocitySection>,
+}
+
+/// `[[initial.velocity]]`.
+#[derive(Clone, Debug, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct InitialVelocitySection {
+    pub set: String,
+    pub value: [f64; 3],
+}

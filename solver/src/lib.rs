@@ -11,5 +11,6 @@ pub mod error;
 pub mod element;
 pub mod material;
 pub mod mesh;
+pub mod output;
 
 pub use error::{DcfmError, Result};

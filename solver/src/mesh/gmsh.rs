@@ -616,6 +616,52 @@ mod tests {
         assert_eq!(a.node_sets, b.node_sets);
     }
 
+    /// `gmsh_stack*.msh` were written by Gmsh 4.15 itself (OpenCASCADE boxes 3×3×2 "rock"
+    /// under 3×3×1 "lining", fragmented, transfinite with 3 points per curve, recombined;
+    /// physical surfaces "base" (z = 0) and "interface" (z = 2), an unnamed physical point
+    /// 31 at the origin), as ASCII and as binary MSH 4.1.
+    fn check_gmsh_stack(m: &Mesh) {
+        assert_eq!(m.n_elements(), 16);
+        assert_eq!(m.n_nodes(), 45);
+        assert_eq!(m.region_names, vec!["rock".to_string(), "lining".to_string()]);
+        let z = |n: u32| m.coords[n as usize][2];
+        for (e, conn) in m.elements.iter().enumerate() {
+            let zc: f64 = conn.iter().map(|&n| z(n)).sum::<f64>() / 8.0;
+            let expect = if zc < 2.0 { 0 } else { 1 };
+            assert_eq!(m.element_region[e], expect, "element {e} at z = {zc}");
+        }
+        assert_eq!(m.element_sets["rock"].len(), 8);
+        assert_eq!(m.element_sets["lining"].len(), 8);
+        for (name, level) in [("base", 0.0), ("interface", 2.0)] {
+            let faces = &m.face_sets[name];
+            assert_eq!(faces.len(), 4, "{name}");
+            for f in faces {
+                assert!(m.face_nodes(*f).iter().all(|&n| z(n) == level), "{name} {f:?}");
+            }
+            assert_eq!(m.node_sets[name].len(), 9);
+        }
+        assert!(m.face_sets["base"].iter().all(|f| m.element_region[f.element as usize] == 0));
+        let origin = &m.node_sets["point_31"];
+        assert_eq!(origin.len(), 1);
+        assert_eq!(m.coords[origin[0] as usize], [0.0; 3]);
+    }
+
+    #[test]
+    fn files_written_by_gmsh_itself() {
+        let a = read_gmsh(&fixture("gmsh_stack.msh")).unwrap();
+        check_gmsh_stack(&a);
+        let b = read_gmsh(&fixture("gmsh_stack_binary.msh")).unwrap();
+        check_gmsh_stack(&b);
+        assert_eq!(a.coords, b.coords);
+        assert_eq!(a.elements, b.elements);
+        assert_eq!(a.face_sets, b.face_sets);
+        let mut m = a;
+        split_between_regions(&mut m, "rock", "lining").unwrap();
+        m.validate().unwrap();
+        assert_eq!(m.n_nodes(), 45 + 9);
+        assert_eq!(m.face_sets["rock-lining"].len(), 4);
+    }
+
     #[test]
     fn split_between_imported_regions() {
         let mut m = read_gmsh(&fixture("cube_2x2x2.msh")).unwrap();

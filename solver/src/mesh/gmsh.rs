@@ -122,10 +122,14 @@ fn physical_names(bytes: &[u8]) -> std::result::Result<HashMap<(i32, i32), Strin
             .next()
             .ok_or_else(|| format!("$PhysicalNames: expected {count} names, found {i}"))?;
         let bad = || format!("$PhysicalNames: line '{line}' is not `dim tag \"name\"`");
-        let mut it = line.splitn(3, char::is_whitespace);
-        let dim: i32 = it.next().and_then(|s| s.parse().ok()).ok_or_else(bad)?;
-        let tag: i32 = it.next().and_then(|s| s.parse().ok()).ok_or_else(bad)?;
-        let name = it.next().map(str::trim).ok_or_else(bad)?;
+        let (dim, rest) = line.split_once(char::is_whitespace).ok_or_else(bad)?;
+        let (tag, name) = rest
+            .trim_start()
+            .split_once(char::is_whitespace)
+            .ok_or_else(bad)?;
+        let dim: i32 = dim.parse().map_err(|_| bad())?;
+        let tag: i32 = tag.parse().map_err(|_| bad())?;
+        let name = name.trim();
         let name = name
             .strip_prefix('"')
             .and_then(|n| n.strip_suffix('"'))
@@ -623,7 +627,10 @@ mod tests {
     fn check_gmsh_stack(m: &Mesh) {
         assert_eq!(m.n_elements(), 16);
         assert_eq!(m.n_nodes(), 45);
-        assert_eq!(m.region_names, vec!["rock".to_string(), "lining".to_string()]);
+        assert_eq!(
+            m.region_names,
+            vec!["rock".to_string(), "lining".to_string()]
+        );
         let z = |n: u32| m.coords[n as usize][2];
         for (e, conn) in m.elements.iter().enumerate() {
             let zc: f64 = conn.iter().map(|&n| z(n)).sum::<f64>() / 8.0;
@@ -636,11 +643,16 @@ mod tests {
             let faces = &m.face_sets[name];
             assert_eq!(faces.len(), 4, "{name}");
             for f in faces {
-                assert!(m.face_nodes(*f).iter().all(|&n| z(n) == level), "{name} {f:?}");
+                assert!(
+                    m.face_nodes(*f).iter().all(|&n| z(n) == level),
+                    "{name} {f:?}"
+                );
             }
             assert_eq!(m.node_sets[name].len(), 9);
         }
-        assert!(m.face_sets["base"].iter().all(|f| m.element_region[f.element as usize] == 0));
+        assert!(m.face_sets["base"]
+            .iter()
+            .all(|f| m.element_region[f.element as usize] == 0));
         let origin = &m.node_sets["point_31"];
         assert_eq!(origin.len(), 1);
         assert_eq!(m.coords[origin[0] as usize], [0.0; 3]);
@@ -660,6 +672,36 @@ mod tests {
         m.validate().unwrap();
         assert_eq!(m.n_nodes(), 45 + 9);
         assert_eq!(m.face_sets["rock-lining"].len(), 4);
+    }
+
+    #[test]
+    fn unnamed_and_unassigned_volumes() {
+        // Physical volume 2 ("lining") without a name: region and set `volume_2`.
+        let text = ascii_text().replace("6\n3 1 \"rock\"\n3 2 \"lining\"\n", "5\n3 1 \"rock\"\n");
+        let named = parse_gmsh(text.as_bytes(), "a.msh").unwrap();
+        assert_eq!(
+            named.region_names,
+            vec!["rock".to_string(), "volume_2".to_string()]
+        );
+        assert_eq!(named.element_sets["volume_2"], vec![4, 5, 6, 7]);
+        // Volume entity 2 in no physical group at all: region `unassigned_volume_2`.
+        let text = text.replace("2.0 2.0 2.0 2 2 6 1 2", "2.0 2.0 2.0 0 1 2");
+        let m = parse_gmsh(text.as_bytes(), "b.msh").unwrap();
+        assert_eq!(
+            m.region_names,
+            vec!["rock".to_string(), "unassigned_volume_2".to_string()]
+        );
+        assert_eq!(m.element_region, vec![0, 0, 0, 0, 1, 1, 1, 1]);
+        assert_eq!(m.element_sets["all"], vec![0, 1, 2, 3]);
+        assert!(!m.element_sets.contains_key("volume_2"));
+    }
+
+    #[test]
+    fn physical_names_with_spaces() {
+        let names = physical_names(b"$MeshFormat\n4.1 0 8\n$EndMeshFormat\n$PhysicalNames\n2\n3  7   \"upper lining\"\n2 1 base\n$EndPhysicalNames\n$Nodes\n").unwrap();
+        assert_eq!(names[&(3, 7)], "upper lining");
+        assert_eq!(names[&(2, 1)], "base");
+        assert!(physical_names(b"$PhysicalNames\n1\n3 x \"a\"\n$EndPhysicalNames\n").is_err());
     }
 
     #[test]

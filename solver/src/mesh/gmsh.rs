@@ -288,18 +288,17 @@ impl<'a> Importer<'a> {
         }
 
         // Keep the nodes of hex8 elements, renumbered 0..n in file order.
-        let mut new_index = vec![u32::MAX; all_coords.len()];
+        let mut used = vec![false; all_coords.len()];
         for conn in &hex_nodes {
             for &a in conn {
-                new_index[a] = 0;
+                used[a] = true;
             }
         }
+        let mut new_index = vec![u32::MAX; all_coords.len()];
         let mut coords = Vec::new();
-        for (old, slot) in new_index.iter_mut().enumerate() {
-            if *slot == 0 {
-                *slot = coords.len() as u32;
-                coords.push(all_coords[old]);
-            }
+        for (old, _) in used.iter().enumerate().filter(|(_, &u)| u) {
+            new_index[old] = coords.len() as u32;
+            coords.push(all_coords[old]);
         }
         let mesh_node = |tag: u64, el: u64, group: &str| -> Result<u32> {
             node_index

@@ -15,6 +15,7 @@ pub mod load;
 pub mod material;
 pub mod mesh;
 pub mod model;
+pub mod output;
 pub mod stage;
 
 pub use error::{DcfmError, Result};

@@ -1,0 +1,40 @@
+//! Run outputs: everything a run writes under `results/<case>/` (see `docs/outputs.md`).
+//!
+//! One concept per file:
+//! - [`atomic`]: temp file + fsync + rename, so a crash never leaves a half-written file;
+//! - [`vtu`]: ParaView meshes with point and cell fields (XML UnstructuredGrid, raw binary);
+//! - [`pvd`]: the time collection of the VTU files, rewritten after every step;
+//! - [`histories`]: CSV time histories, buffered, resumable;
+//! - [`summary`]: the end-of-run summary as pretty JSON.
+
+pub mod atomic;
+pub mod histories;
+pub mod pvd;
+pub mod summary;
+pub mod vtu;
+
+pub use atomic::{write_atomic, write_atomic_with};
+pub use histories::HistoryWriter;
+pub use pvd::{PvdCollection, PvdEntry};
+pub use summary::write_summary;
+pub use vtu::{write_vtu, VtuField};
+
+/// The display form of a path used in error messages.
+pub(crate) fn label(path: &std::path::Path) -> String {
+    path.display().to_string()
+}
+
+/// A unique, empty scratch directory for tests (no extra dependency).
+#[cfg(test)]
+pub(crate) fn test_dir(name: &str) -> std::path::PathBuf {
+    use std::sync::atomic::{AtomicUsize, Ordering};
+    static N: AtomicUsize = AtomicUsize::new(0);
+    let dir = std::env::temp_dir().join(format!(
+        "dcfm-output-{name}-{}-{}",
+        std::process::id(),
+        N.fetch_add(1, Ordering::Relaxed)
+    ));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    dir
+}

@@ -1,0 +1,557 @@
+//! ParaView meshes: VTK XML UnstructuredGrid (`.vtu`) of hex8 cells with point and cell
+//! fields.
+//!
+//! The XML header is small and written by hand; every array goes to one `AppendedData`
+//! block as base64 of its little-endian binary (`encoding="base64"`,
+//! `header_type="UInt64"`: per array, an 8-byte byte count then the values, encoded as one
+//! base64 stream, which is how VTK itself writes uncompressed appended data). The values
+//! are streamed from the solver's arrays into the (atomic) file with no intermediate copy
+//! of the mesh (a VTK crate model would first copy coordinates, connectivity and every
+//! field into its own buffers) and no float formatting (ASCII would be ~3× larger and
+//! slow to write). Base64 rather than `encoding="raw"`: raw bytes inside XML are read by
+//! VTK/ParaView but not by generic XML parsers (vtkio, which our tests use to read the
+//! files back, stops at the first `<` byte); base64 costs a third more bytes. Floats are
+//! Float64 so post-processing sees the solver's values exactly; connectivity and offsets
+//! are Int32 whenever they fit (always, below 2³¹ nodes), halving their size.
+
+use std::io::{self, Write};
+use std::path::Path;
+
+use super::{atomic::write_atomic_with, label};
+use crate::error::{DcfmError, Result};
+
+/// VTK cell type of the 8-node hexahedron.
+pub const VTK_HEXAHEDRON: u8 = 12;
+
+/// One named field: `values` holds `components` numbers per point (or per cell), point-major
+/// (`[u0x, u0y, u0z, u1x, ...]`).
+#[derive(Clone, Copy, Debug)]
+pub struct VtuField<'a> {
+    pub name: &'a str,
+    pub components: usize,
+    pub values: &'a [f64],
+}
+
+/// Integer width of the connectivity and offsets arrays.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum IndexType {
+    Int32,
+    Int64,
+}
+
+/// Write a `.vtu` file of hex8 `cells` (VTK/Gmsh node order) over `coords`, with
+/// `point_fields` (one tuple per point) and `cell_fields` (one tuple per cell), atomically.
+///
+/// Errors name the file and the offending field (wrong length, zero components) or cell
+/// (node index out of range); nothing is written then.
+pub fn write_vtu(
+    path: &Path,
+    coords: &[[f64; 3]],
+    cells: &[[u32; 8]],
+    point_fields: &[VtuField],
+    cell_fields: &[VtuField],
+) -> Result<()> {
+    let fits_i32 =
+        coords.len() <= i32::MAX as usize && cells.len().saturating_mul(8) <= i32::MAX as usize;
+    let index = if fits_i32 {
+        IndexType::Int32
+    } else {
+        IndexType::Int64
+    };
+    write_vtu_with(path, coords, cells, point_fields, cell_fields, index)
+}
+
+fn write_vtu_with(
+    path: &Path,
+    coords: &[[f64; 3]],
+    cells: &[[u32; 8]],
+    point_fields: &[VtuField],
+    cell_fields: &[VtuField],
+    index: IndexType,
+) -> Result<()> {
+    check(path, coords.len(), cells, point_fields, cell_fields)?;
+    write_atomic_with(path, |w| {
+        write_body(w, coords, cells, point_fields, cell_fields, index)
+    })
+}
+
+fn check(
+    path: &Path,
+    n_points: usize,
+    cells: &[[u32; 8]],
+    point_fields: &[VtuField],
+    cell_fields: &[VtuField],
+) -> Result<()> {
+    for (kind, fields, n) in [
+        ("point field", point_fields, n_points),
+        ("cell field", cell_fields, cells.len()),
+    ] {
+        for f in fields {
+            if f.components == 0 || f.values.len() != f.components * n {
+                return Err(DcfmError::invalid(
+                    label(path),
+                    format!("{kind} '{}'", f.name),
+                    format!("{} values, {} components", f.values.len(), f.components),
+                    format!(
+                        "components >= 1 and components x {n} values ({n} {}s)",
+                        if kind == "point field" {
+                            "point"
+                        } else {
+                            "cell"
+                        }
+                    ),
+                ));
+            }
+        }
+    }
+    for (c, conn) in cells.iter().enumerate() {
+        if let Some(bad) = conn.iter().find(|&&a| a as usize >= n_points) {
+            return Err(DcfmError::invalid(
+                label(path),
+                format!("cell {c}"),
+                format!("node {bad}"),
+                format!("node indices below {n_points}"),
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Escape a string for an XML attribute value.
+pub(crate) fn xml_escape(s: &str) -> String {
+    let mut out = String::with_capacity(s.len());
+    for ch in s.chars() {
+        match ch {
+            '&' => out.push_str("&amp;"),
+            '<' => out.push_str("&lt;"),
+            '>' => out.push_str("&gt;"),
+            '"' => out.push_str("&quot;"),
+            '\'' => out.push_str("&apos;"),
+            c => out.push(c),
+        }
+    }
+    out
+}
+
+/// The arrays in the order they are appended, with their byte sizes (without the header).
+struct ArrayLayout {
+    offset: u64,
+}
+
+fn write_body<W: Write>(
+    w: &mut W,
+    coords: &[[f64; 3]],
+    cells: &[[u32; 8]],
+    point_fields: &[VtuField],
+    cell_fields: &[VtuField],
+    index: IndexType,
+) -> io::Result<()> {
+    let isize = match index {
+        IndexType::Int32 => 4u64,
+        IndexType::Int64 => 8u64,
+    };
+    let itype = match index {
+        IndexType::Int32 => "Int32",
+        IndexType::Int64 => "Int64",
+    };
+    let n_cells = cells.len() as u64;
+    // Offsets into the appended block, in base64 characters: every array is an 8-byte
+    // length header + data, encoded (and padded) on its own.
+    let mut next = 0u64;
+    let mut take = |bytes: u64| {
+        let a = ArrayLayout { offset: next };
+        next += 4 * (8 + bytes).div_ceil(3);
+        a
+    };
+    let pf: Vec<ArrayLayout> = point_fields
+        .iter()
+        .map(|f| take(8 * f.values.len() as u64))
+        .collect();
+    let cf: Vec<ArrayLayout> = cell_fields
+        .iter()
+        .map(|f| take(8 * f.values.len() as u64))
+        .collect();
+    let points = take(24 * coords.len() as u64);
+    let conn = take(8 * n_cells * isize);
+    let offs = take(n_cells * isize);
+    let types = take(n_cells);
+
+    writeln!(w, "<?xml version=\"1.0\"?>")?;
+    writeln!(
+        w,
+        "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">"
+    )?;
+    writeln!(w, "  <UnstructuredGrid>")?;
+    writeln!(
+        w,
+        "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">",
+        coords.len(),
+        cells.len()
+    )?;
+    let data_array = |w: &mut W, f: &VtuField, a: &ArrayLayout| {
+        writeln!(
+            w,
+            "        <DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"appended\" offset=\"{}\"/>",
+            xml_escape(f.name),
+            f.components,
+            a.offset
+        )
+    };
+    writeln!(w, "      <PointData>")?;
+    for (f, a) in point_fields.iter().zip(&pf) {
+        data_array(w, f, a)?;
+    }
+    writeln!(w, "      </PointData>")?;
+    writeln!(w, "      <CellData>")?;
+    for (f, a) in cell_fields.iter().zip(&cf) {
+        data_array(w, f, a)?;
+    }
+    writeln!(w, "      </CellData>")?;
+    writeln!(w, "      <Points>")?;
+    writeln!(
+        w,
+        "        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" format=\"appended\" offset=\"{}\"/>",
+        points.offset
+    )?;
+    writeln!(w, "      </Points>")?;
+    writeln!(w, "      <Cells>")?;
+    writeln!(
+        w,
+        "        <DataArray type=\"{itype}\" Name=\"connectivity\" format=\"appended\" offset=\"{}\"/>",
+        conn.offset
+    )?;
+    writeln!(
+        w,
+        "        <DataArray type=\"{itype}\" Name=\"offsets\" format=\"appended\" offset=\"{}\"/>",
+        offs.offset
+    )?;
+    writeln!(
+        w,
+        "        <DataArray type=\"UInt8\" Name=\"types\" format=\"appended\" offset=\"{}\"/>",
+        types.offset
+    )?;
+    writeln!(w, "      </Cells>")?;
+    writeln!(w, "    </Piece>")?;
+    writeln!(w, "  </UnstructuredGrid>")?;
+    write!(w, "  <AppendedData encoding=\"base64\">\n   _")?;
+
+    let mut b = Base64Writer::new(w);
+    for f in point_fields.iter().chain(cell_fields) {
+        b.put(&(8 * f.values.len() as u64).to_le_bytes())?;
+        for v in f.values {
+            b.put(&v.to_le_bytes())?;
+        }
+        b.end_array()?;
+    }
+    b.put(&(24 * coords.len() as u64).to_le_bytes())?;
+    for p in coords {
+        for v in p {
+            b.put(&v.to_le_bytes())?;
+        }
+    }
+    b.end_array()?;
+    let index_bytes = |b: &mut Base64Writer<W>, v: u64| match index {
+        IndexType::Int32 => b.put(&(v as i32).to_le_bytes()),
+        IndexType::Int64 => b.put(&(v as i64).to_le_bytes()),
+    };
+    b.put(&(8 * n_cells * isize).to_le_bytes())?;
+    for c in cells {
+        for &a in c {
+            index_bytes(&mut b, a as u64)?;
+        }
+    }
+    b.end_array()?;
+    b.put(&(n_cells * isize).to_le_bytes())?;
+    for i in 1..=n_cells {
+        index_bytes(&mut b, 8 * i)?;
+    }
+    b.end_array()?;
+    b.put(&n_cells.to_le_bytes())?;
+    for _ in 0..n_cells {
+        b.put(&[VTK_HEXAHEDRON])?;
+    }
+    b.end_array()?;
+    debug_assert_eq!(b.written, next);
+    b.flush()?;
+    write!(w, "\n  </AppendedData>\n</VTKFile>\n")?;
+    Ok(())
+}
+
+const B64: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+
+/// Streaming base64 encoder: bytes in, characters out in 64 KiB chunks; `end_array` pads
+/// the current array so the next one starts on its own 4-character group.
+struct Base64Writer<'w, W: Write> {
+    w: &'w mut W,
+    pending: [u8; 3],
+    n_pending: usize,
+    out: Vec<u8>,
+    /// Characters produced so far (checked against the offsets in the header).
+    written: u64,
+}
+
+impl<'w, W: Write> Base64Writer<'w, W> {
+    fn new(w: &'w mut W) -> Self {
+        Self {
+            w,
+            pending: [0; 3],
+            n_pending: 0,
+            out: Vec::with_capacity(1 << 16),
+            written: 0,
+        }
+    }
+
+    #[inline]
+    fn put(&mut self, bytes: &[u8]) -> io::Result<()> {
+        for &byte in bytes {
+            self.pending[self.n_pending] = byte;
+            self.n_pending += 1;
+            if self.n_pending == 3 {
+                self.emit(3);
+                if self.out.len() >= (1 << 16) - 4 {
+                    self.flush()?;
+                }
+            }
+        }
+        Ok(())
+    }
+
+    /// Encode the pending group (`n` = 1..=3 real bytes) as four characters.
+    #[inline]
+    fn emit(&mut self, n: usize) {
+        let [a, b, c] = self.pending;
+        let (b, c) = (if n > 1 { b } else { 0 }, if n > 2 { c } else { 0 });
+        let chars = [
+            B64[(a >> 2) as usize],
+            B64[(((a & 0x03) << 4) | (b >> 4)) as usize],
+            if n > 1 {
+                B64[(((b & 0x0f) << 2) | (c >> 6)) as usize]
+            } else {
+                b'='
+            },
+            if n > 2 {
+                B64[(c & 0x3f) as usize]
+            } else {
+                b'='
+            },
+        ];
+        self.out.extend_from_slice(&chars);
+        self.written += 4;
+        self.n_pending = 0;
+    }
+
+    fn end_array(&mut self) -> io::Result<()> {
+        if self.n_pending > 0 {
+            self.emit(self.n_pending);
+        }
+        Ok(())
+    }
+
+    fn flush(&mut self) -> io::Result<()> {
+        self.w.write_all(&self.out)?;
+        self.out.clear();
+        Ok(())
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::output::test_dir;
+    use vtkio::model::{Attribute, CellType, DataSet, Piece, VertexNumbers};
+
+    /// A 2×1×1 block of hex8 cells with awkward coordinates.
+    fn two_cells() -> (Vec<[f64; 3]>, Vec<[u32; 8]>) {
+        let mut coords = Vec::new();
+        for k in 0..2 {
+            for j in 0..2 {
+                for i in 0..3 {
+                    coords.push([
+                        i as f64 * 0.1 + 1e-3 * j as f64,
+                        j as f64 * std::f64::consts::PI,
+                        k as f64 * 1.0e-7 - 3.3,
+                    ]);
+                }
+            }
+        }
+        let id = |i: u32, j: u32, k: u32| i + 3 * j + 6 * k;
+        let cells = (0..2)
+            .map(|i| {
+                [
+                    id(i, 0, 0),
+                    id(i + 1, 0, 0),
+                    id(i + 1, 1, 0),
+                    id(i, 1, 0),
+                    id(i, 0, 1),
+                    id(i + 1, 0, 1),
+                    id(i + 1, 1, 1),
+                    id(i, 1, 1),
+                ]
+            })
+            .collect();
+        (coords, cells)
+    }
+
+    fn read_back(path: &Path) -> vtkio::model::UnstructuredGridPiece {
+        let vtk = vtkio::Vtk::import(path).expect("vtkio reads the file");
+        match vtk.data {
+            DataSet::UnstructuredGrid { mut pieces, .. } => match pieces.remove(0) {
+                Piece::Inline(p) => *p,
+                other => panic!("unexpected piece {other:?}"),
+            },
+            other => panic!("unexpected data set {other:?}"),
+        }
+    }
+
+    fn field_values(attrs: &[Attribute], name: &str) -> (usize, Vec<f64>) {
+        for a in attrs {
+            if let Attribute::DataArray(d) = a {
+                if d.name == name {
+                    let n = match d.elem {
+                        vtkio::model::ElementType::Vectors => 3,
+                        vtkio::model::ElementType::Scalars { num_comp, .. } => num_comp as usize,
+                        vtkio::model::ElementType::Generic(n) => n as usize,
+                        ref other => panic!("unexpected element type {other:?}"),
+                    };
+                    return (n, d.data.clone().cast_into::<f64>().unwrap());
+                }
+            }
+        }
+        panic!("no field {name}");
+    }
+
+    fn round_trip(index: IndexType) {
+        let dir = test_dir("vtu");
+        let path = dir.join("mesh_000001.vtu");
+        let (coords, cells) = two_cells();
+        let u: Vec<f64> = (0..coords.len() * 3)
+            .map(|i| (i as f64).sin() * 1e-3)
+            .collect();
+        let p: Vec<f64> = (0..coords.len()).map(|i| -(i as f64) * 1.5e6).collect();
+        let damage = [0.25, 1.0];
+        let stress: Vec<f64> = (0..12).map(|i| i as f64 * 1e5 + 0.125).collect();
+        write_vtu_with(
+            &path,
+            &coords,
+            &cells,
+            &[
+                VtuField {
+                    name: "displacement",
+                    components: 3,
+                    values: &u,
+                },
+                VtuField {
+                    name: "pore<&>",
+                    components: 1,
+                    values: &p,
+                },
+            ],
+            &[
+                VtuField {
+                    name: "damage",
+                    components: 1,
+                    values: &damage,
+                },
+                VtuField {
+                    name: "stress",
+                    components: 6,
+                    values: &stress,
+                },
+            ],
+            index,
+        )
+        .unwrap();
+        let piece = read_back(&path);
+        assert_eq!(piece.num_points(), coords.len());
+        let pts: Vec<f64> = piece.points.cast_into::<f64>().unwrap();
+        assert_eq!(pts, coords.iter().flatten().copied().collect::<Vec<_>>());
+        let (conn, offsets) = match piece.cells.cell_verts {
+            VertexNumbers::XML {
+                connectivity,
+                offsets,
+            } => (connectivity, offsets),
+            other => panic!("unexpected cells {other:?}"),
+        };
+        let expect: Vec<u64> = cells.iter().flatten().map(|&a| a as u64).collect();
+        assert_eq!(conn, expect);
+        assert_eq!(offsets, vec![8, 16]);
+        assert_eq!(piece.cells.types, vec![CellType::Hexahedron; 2]);
+        assert_eq!(field_values(&piece.data.point, "displacement"), (3, u));
+        assert_eq!(field_values(&piece.data.point, "pore<&>"), (1, p));
+        assert_eq!(
+            field_values(&piece.data.cell, "damage"),
+            (1, damage.to_vec())
+        );
+        assert_eq!(field_values(&piece.data.cell, "stress"), (6, stress));
+    }
+
+    #[test]
+    fn base64_matches_rfc4648_vectors() {
+        for (input, expect) in [
+            ("", ""),
+            ("f", "Zg=="),
+            ("fo", "Zm8="),
+            ("foo", "Zm9v"),
+            ("foob", "Zm9vYg=="),
+            ("fooba", "Zm9vYmE="),
+            ("foobar", "Zm9vYmFy"),
+        ] {
+            let mut out = Vec::new();
+            let mut b = Base64Writer::new(&mut out);
+            b.put(input.as_bytes()).unwrap();
+            b.end_array().unwrap();
+            assert_eq!(b.written as usize, expect.len());
+            b.flush().unwrap();
+            assert_eq!(String::from_utf8(out).unwrap(), expect);
+        }
+    }
+
+    #[test]
+    fn round_trip_int32_indices() {
+        round_trip(IndexType::Int32);
+    }
+
+    #[test]
+    fn round_trip_int64_indices() {
+        round_trip(IndexType::Int64);
+    }
+
+    #[test]
+    fn no_fields_and_no_cells() {
+        let dir = test_dir("vtu-empty");
+        let path = dir.join("empty.vtu");
+        write_vtu(&path, &[[0.0; 3]], &[], &[], &[]).unwrap();
+        let piece = read_back(&path);
+        assert_eq!(piece.num_points(), 1);
+        assert_eq!(piece.cells.types.len(), 0);
+    }
+
+    #[test]
+    fn bad_field_length_names_file_and_field() {
+        let dir = test_dir("vtu-bad");
+        let path = dir.join("bad.vtu");
+        let (coords, cells) = two_cells();
+        let short = [1.0; 5];
+        let err = write_vtu(
+            &path,
+            &coords,
+            &cells,
+            &[VtuField {
+                name: "velocity",
+                components: 3,
+                values: &short,
+            }],
+            &[],
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(err.contains("bad.vtu") && err.contains("velocity"), "{err}");
+        assert!(!path.exists());
+        let mut bad_cells = cells.clone();
+        bad_cells[1][3] = 99;
+        let err = write_vtu(&path, &coords, &bad_cells, &[], &[])
+            .unwrap_err()
+            .to_string();
+        assert!(err.contains("cell 1") && err.contains("99"), "{err}");
+    }
+}

@@ -25,7 +25,7 @@ pub fn markdown(rows: &[CheckRow], commit: &str) -> String {
         for r in rows.iter().filter(|r| r.case == case) {
             s.push_str(&format!(
                 "| {} | {:.6e} | {:.6e} | {:.3e} | {:.3e} | {} | {} |\n",
-                r.quantity,
+                r.quantity.replace('|', "\\|"),
                 r.reference,
                 r.computed,
                 r.rel_error,

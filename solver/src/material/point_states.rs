@@ -53,6 +53,12 @@ impl PointStates {
         std::mem::swap(&mut self.old, &mut self.new);
     }
 
+    /// Replace the committed state (e.g. from a checkpoint); `values` has the same length.
+    pub fn restore(&mut self, values: &[f64]) {
+        self.old.copy_from_slice(values);
+        self.new.copy_from_slice(values);
+    }
+
     /// Bytes held (both buffers).
     pub fn bytes(&self) -> usize {
         (self.old.len() + self.new.len()) * std::mem::size_of::<f64>()

@@ -67,6 +67,8 @@ pub struct Simulation {
     /// Index into `model.constraints.prescribed` for each node DOF (u32::MAX: none).
     prescribed_of: Vec<[u32; 3]>,
     chunks: Vec<ChunkResult>,
+    /// The next step is the first of the energy account (t⁰ is set there).
+    energy_origin_pending: bool,
 }
 
 impl Simulation {
@@ -139,6 +141,7 @@ impl Simulation {
             contact_nodes: Vec::new(),
             prescribed_of,
             chunks: vec![ChunkResult::default(); n_chunks],
+            energy_origin_pending: true,
             model,
         }
     }
@@ -152,6 +155,12 @@ impl Simulation {
             initial_kinetic: k,
             ..Default::default()
         };
+        self.energy_origin_pending = true;
+    }
+
+    /// The energy account was restored (from a checkpoint): it has already started.
+    pub(crate) fn energy_account_restored(&mut self) {
+        self.energy_origin_pending = false;
     }
 
     /// Internal forces f_int(Uⁿ) (and β K0 V^{n−½}) of every element, colour by colour,
@@ -258,7 +267,7 @@ impl Simulation {
             });
         debug_assert_eq!(n, self.u_next.len());
         // 4–5. Contact correction at the touched nodes (with the energy fix-up).
-        let mut contact_fix: EnergyParts = [0.0; 6];
+        let mut contact_fix: EnergyParts = [0.0; 11];
         for &i in &self.contact_nodes {
             let i = i as usize;
             let w = self.model.inv_mass[i];
@@ -268,15 +277,15 @@ impl Simulation {
                 self.v_next[i][d] += dt * w * self.r[i][d];
             }
             let after = ctx.energy_parts(i, &self.v_next[i], &self.r[i]);
-            for k in 0..6 {
+            for k in 0..11 {
                 contact_fix[k] += after[k] - before[k];
             }
         }
         // 6. Energies, instability check.
-        let mut parts: EnergyParts = [0.0; 6];
+        let mut parts: EnergyParts = [0.0; 11];
         let mut worst: Option<(u32, bool, f64)> = None;
         for c in &self.chunks {
-            for k in 0..6 {
+            for k in 0..11 {
                 parts[k] += c.parts[k];
             }
             if c.nonfinite {
@@ -287,16 +296,12 @@ impl Simulation {
                 worst = Some((c.vmax_node, false, c.vmax));
             }
         }
-        for k in 0..6 {
+        for k in 0..11 {
             parts[k] += contact_fix[k];
         }
         let e = &mut self.energies;
-        e.kinetic = parts[0];
-        e.internal += parts[1];
-        e.damping += parts[2];
-        e.contact -= parts[3];
-        e.external += parts[4];
-        e.input += parts[5];
+        e.advance(&parts, self.energy_origin_pending);
+        self.energy_origin_pending = false;
         if let Some((node, true, _)) = worst {
             return Err(self.instability(node as usize, "non-finite displacement or velocity"));
         }
@@ -428,23 +433,32 @@ impl NodeContext<'_> {
         }
     }
 
-    /// Energy parts of node i for the motion V^{n−½} → `v_next` with contact force `r`:
-    /// [kinetic at tⁿ, internal, damping, contact, external, input] increments.
+    /// Energy parts of node i for the motion V^{n−½} → `v_next` with contact force `r`
+    /// (layout of [`EnergyParts`]).
     #[inline(always)]
     fn energy_parts(&self, i: usize, v_next: &[f64; 3], r: &[f64; 3]) -> EnergyParts {
         let m = self.mass[i];
-        let mut p = [0.0; 6];
+        let mut p = [0.0; 11];
         for d in 0..3 {
             let vn = 0.5 * (self.v[i][d] + v_next[d]);
-            let ds = self.dt * vn;
             p[0] += 0.5 * m * vn * vn;
-            p[1] += self.f_int[i][d] * ds;
-            p[2] += (self.f_damp[i][d] + self.alpha * m * self.v[i][d]) * ds;
-            p[3] += r[d] * ds;
-            p[4] += (self.f_ext[i][d] + m * self.gravity[d]) * ds;
-            if self.constrained[i] & (1 << d) != 0 {
-                let reaction = m * (v_next[d] - self.v[i][d]) / self.dt - self.applied_force(i, d, r);
-                p[5] += reaction * ds;
+            let reaction = if self.constrained[i] & (1 << d) != 0 {
+                m * (v_next[d] - self.v[i][d]) / self.dt - self.applied_force(i, d, r)
+            } else {
+                0.0
+            };
+            let forces = [
+                self.f_int[i][d],
+                self.f_damp[i][d] + self.alpha * m * self.v[i][d],
+                r[d],
+                self.f_ext[i][d] + m * self.gravity[d],
+                reaction,
+            ];
+            let before = 0.5 * self.dt * self.v[i][d];
+            let after = 0.5 * self.dt * v_next[d];
+            for k in 0..5 {
+                p[1 + k] += forces[k] * before;
+                p[6 + k] += forces[k] * after;
             }
         }
         p

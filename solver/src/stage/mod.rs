@@ -1,6 +1,8 @@
 //! Analysis stages: the explicit dynamic driver and its energy accounting.
 
+pub mod checkpoint;
 pub mod dynamic;
+pub mod run;
 pub mod energy;
 
 pub use dynamic::Simulation;

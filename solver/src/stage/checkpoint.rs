@@ -1,0 +1,137 @@
+//! Checkpoints of a running simulation, so that long runs can be resumed: displacements,
+//! half-step velocities, accelerations, energies and every integration-point state, in a
+//! little-endian binary file written atomically.
+
+use std::io::{Read, Write};
+use std::path::Path;
+
+use crate::error::{DcfmError, Result};
+use crate::output::write_atomic_with;
+use crate::stage::{Energies, Simulation};
+
+const MAGIC: &[u8; 8] = b"DCFMCKP1";
+
+fn put_f64s(w: &mut impl Write, xs: &[f64]) -> std::io::Result<()> {
+    for x in xs {
+        w.write_all(&x.to_le_bytes())?;
+    }
+    Ok(())
+}
+
+fn energies_vec(e: &Energies) -> [f64; 12] {
+    let a = e.accumulated;
+    [e.kinetic, e.internal, e.damping, e.contact, e.external, e.input, e.initial_kinetic, a[0], a[1], a[2], a[3], a[4]]
+}
+
+/// Write the simulation's state to `path` (atomically).
+pub fn write_checkpoint(path: &Path, sim: &Simulation) -> Result<()> {
+    write_atomic_with(path, |w| {
+        w.write_all(MAGIC)?;
+        w.write_all(&(sim.u.len() as u64).to_le_bytes())?;
+        w.write_all(&(sim.model.groups.len() as u64).to_le_bytes())?;
+        w.write_all(&sim.step.to_le_bytes())?;
+        put_f64s(w, &[sim.time, sim.dt])?;
+        put_f64s(w, &energies_vec(&sim.energies))?;
+        for field in [&sim.u, &sim.v, &sim.a] {
+            for x in field.iter() {
+                put_f64s(w, x)?;
+            }
+        }
+        for g in &sim.model.groups {
+            let s = g.states.current();
+            w.write_all(&(s.len() as u64).to_le_bytes())?;
+            put_f64s(w, s)?;
+        }
+        Ok(())
+    })
+}
+
+struct Reader<'a> {
+    bytes: &'a [u8],
+    pos: usize,
+    file: String,
+}
+
+impl Reader<'_> {
+    fn take(&mut self, n: usize) -> Result<&[u8]> {
+        if self.pos + n > self.bytes.len() {
+            return Err(DcfmError::Parse {
+                file: self.file.clone(),
+                message: format!("checkpoint truncated at byte {}", self.pos),
+            });
+        }
+        let s = &self.bytes[self.pos..self.pos + n];
+        self.pos += n;
+        Ok(s)
+    }
+    fn u64(&mut self) -> Result<u64> {
+        Ok(u64::from_le_bytes(self.take(8)?.try_into().expect("8 bytes")))
+    }
+    fn f64(&mut self) -> Result<f64> {
+        Ok(f64::from_le_bytes(self.take(8)?.try_into().expect("8 bytes")))
+    }
+}
+
+/// Restore a checkpoint into `sim`, which must have been built from the same case.
+pub fn read_checkpoint(path: &Path, sim: &mut Simulation) -> Result<()> {
+    let file = path.display().to_string();
+    let mut bytes = Vec::new();
+    std::fs::File::open(path)
+        .and_then(|mut f| f.read_to_end(&mut bytes))
+        .map_err(|e| DcfmError::io(&file, e))?;
+    let mut r = Reader { bytes: &bytes, pos: 0, file: file.clone() };
+    let mismatch = |what: &str, found: u64, expected: usize| DcfmError::Parse {
+        file: file.clone(),
+        message: format!("checkpoint has {found} {what}, the case has {expected}: it belongs to another case"),
+    };
+    if r.take(8)? != MAGIC {
+        return Err(DcfmError::Parse { file, message: "not a dcfm checkpoint (bad magic)".into() });
+    }
+    let n = r.u64()?;
+    if n as usize != sim.u.len() {
+        return Err(mismatch("nodes", n, sim.u.len()));
+    }
+    let ng = r.u64()?;
+    if ng as usize != sim.model.groups.len() {
+        return Err(mismatch("element groups", ng, sim.model.groups.len()));
+    }
+    let step = r.u64()?;
+    let time = r.f64()?;
+    let dt = r.f64()?;
+    if (dt - sim.dt).abs() > 1e-15 * sim.dt {
+        return Err(DcfmError::Parse {
+            file,
+            message: format!("checkpoint time step {dt:e} s differs from the case's {:e} s", sim.dt),
+        });
+    }
+    let e: Vec<f64> = (0..12).map(|_| r.f64()).collect::<Result<_>>()?;
+    for field in [&mut sim.u, &mut sim.v, &mut sim.a] {
+        for x in field.iter_mut() {
+            for c in x.iter_mut() {
+                *c = r.f64()?;
+            }
+        }
+    }
+    for g in sim.model.groups.iter_mut() {
+        let len = r.u64()?;
+        if len as usize != g.states.current().len() {
+            return Err(mismatch("state values in a group", len, g.states.current().len()));
+        }
+        let values: Vec<f64> = (0..len).map(|_| r.f64()).collect::<Result<_>>()?;
+        g.states.restore(&values);
+    }
+    sim.step = step;
+    sim.time = time;
+    sim.energies = Energies {
+        kinetic: e[0],
+        internal: e[1],
+        damping: e[2],
+        contact: e[3],
+        external: e[4],
+        input: e[5],
+        initial_kinetic: e[6],
+        accumulated: [e[7], e[8], e[9], e[10], e[11]],
+    };
+    sim.energy_account_restored();
+    Ok(())
+}

@@ -107,7 +107,10 @@ impl Model {
                     file,
                     "regions",
                     &s.region,
-                    format!("no such region in the mesh (regions: {:?})", mesh.region_names),
+                    format!(
+                        "no such region in the mesh (regions: {:?})",
+                        mesh.region_names
+                    ),
                 ));
             }
         }
@@ -121,8 +124,10 @@ impl Model {
                 }
             }
         }
-        if let Some(n) = mass.iter().position(|&m| !(m > 0.0)) {
-            return Err(DcfmError::Mesh(format!("node {n} belongs to no element (zero mass)")));
+        if let Some(n) = mass.iter().position(|&m| m.is_nan() || m <= 0.0) {
+            return Err(DcfmError::Mesh(format!(
+                "node {n} belongs to no element (zero mass)"
+            )));
         }
         let mut stable = StableStep {
             critical: f64::INFINITY,
@@ -178,7 +183,11 @@ impl Model {
     }
 
     /// Volume-averaged (strain, stress) of global element `e` for displacements `u`.
-    pub fn element_strain_stress(&self, e: usize, u: &[[f64; 3]]) -> (crate::material::Voigt, crate::material::Voigt) {
+    pub fn element_strain_stress(
+        &self,
+        e: usize,
+        u: &[[f64; 3]],
+    ) -> (crate::material::Voigt, crate::material::Voigt) {
         let (g, le) = self.element_location[e];
         self.groups[g as usize].strain_stress_of(le as usize, u)
     }

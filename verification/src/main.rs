@@ -11,7 +11,9 @@ use dcfm_verification::record::{failures, CheckRow};
 use dcfm_verification::report;
 
 #[derive(Parser)]
-#[command(about = "Run the dcfm verification cases and write results.json + reports/verification.md")]
+#[command(
+    about = "Run the dcfm verification cases and write results.json + reports/verification.md"
+)]
 struct Args {
     /// Where results.json goes.
     #[arg(long, default_value = "results/verification")]
@@ -59,7 +61,13 @@ fn main() -> ExitCode {
         match (case.run)() {
             Ok(r) => {
                 let ok = r.iter().filter(|x| x.pass).count();
-                eprintln!("{:<6} {}/{} pass  ({:.1} s)", case.id, ok, r.len(), t0.elapsed().as_secs_f64());
+                eprintln!(
+                    "{:<6} {}/{} pass  ({:.1} s)",
+                    case.id,
+                    ok,
+                    r.len(),
+                    t0.elapsed().as_secs_f64()
+                );
                 rows.extend(r);
             }
             Err(e) => {

@@ -33,26 +33,55 @@ impl Check {
     }
 
     /// Relative check |c − r|/|r| ≤ tol.
-    pub fn relative(&mut self, quantity: &str, reference: f64, computed: f64, tol: f64, source: &str) -> &mut Self {
+    pub fn relative(
+        &mut self,
+        quantity: &str,
+        reference: f64,
+        computed: f64,
+        tol: f64,
+        source: &str,
+    ) -> &mut Self {
         let err = (computed - reference).abs() / reference.abs();
         self.push(quantity, reference, computed, err, tol, source)
     }
 
     /// Absolute check |c − r| ≤ tol (reported in `rel_error` as the absolute error).
-    pub fn absolute(&mut self, quantity: &str, reference: f64, computed: f64, tol: f64, source: &str) -> &mut Self {
+    pub fn absolute(
+        &mut self,
+        quantity: &str,
+        reference: f64,
+        computed: f64,
+        tol: f64,
+        source: &str,
+    ) -> &mut Self {
         let err = (computed - reference).abs();
         self.push(quantity, reference, computed, err, tol, source)
     }
 
     /// Range check lo ≤ computed ≤ hi (reference = centre, tolerance = half-width).
-    pub fn within(&mut self, quantity: &str, lo: f64, hi: f64, computed: f64, source: &str) -> &mut Self {
+    pub fn within(
+        &mut self,
+        quantity: &str,
+        lo: f64,
+        hi: f64,
+        computed: f64,
+        source: &str,
+    ) -> &mut Self {
         let centre = 0.5 * (lo + hi);
         let half = 0.5 * (hi - lo);
         let err = (computed - centre).abs();
         self.push(quantity, centre, computed, err, half, source)
     }
 
-    fn push(&mut self, quantity: &str, reference: f64, computed: f64, err: f64, tol: f64, source: &str) -> &mut Self {
+    fn push(
+        &mut self,
+        quantity: &str,
+        reference: f64,
+        computed: f64,
+        err: f64,
+        tol: f64,
+        source: &str,
+    ) -> &mut Self {
         self.rows.push(CheckRow {
             case: self.case.clone(),
             quantity: quantity.to_string(),

@@ -6,7 +6,10 @@ use dcfm_verification::cases;
 use dcfm_verification::record::failures;
 
 fn run_case(id: &str) {
-    let case = cases::all().into_iter().find(|c| c.id == id).expect("registered case");
+    let case = cases::all()
+        .into_iter()
+        .find(|c| c.id == id)
+        .expect("registered case");
     let rows = (case.run)().unwrap_or_else(|e| panic!("{id}: {e}"));
     assert!(!rows.is_empty(), "{id} checked nothing");
     let failed = failures(&rows);
@@ -38,6 +41,9 @@ fn every_case_is_tested_here() {
     let ids: Vec<&str> = cases::all().iter().map(|c| c.id).collect();
     let covered = ["W1", "patch", "energy", "W13", "W1-conv"];
     for id in ids {
-        assert!(covered.contains(&id), "case {id} has no test in analytic.rs or convergence.rs");
+        assert!(
+            covered.contains(&id),
+            "case {id} has no test in analytic.rs or convergence.rs"
+        );
     }
 }

@@ -27,12 +27,16 @@ fn element() -> impl Strategy<Value = [[f64; 3]; 8]> {
 }
 
 fn field() -> impl Strategy<Value = [[f64; 3]; 8]> {
-    proptest::collection::vec(-1e-3f64..1e-3, 24).prop_map(|d| std::array::from_fn(|a| std::array::from_fn(|i| d[3 * a + i])))
+    proptest::collection::vec(-1e-3f64..1e-3, 24)
+        .prop_map(|d| std::array::from_fn(|a| std::array::from_fn(|i| d[3 * a + i])))
 }
 
 fn forces(x: &[[f64; 3]; 8], u: &[[f64; 3]; 8], integration: Integration) -> [[f64; 3]; 8] {
     let m = material();
-    let ctx = PointContext { char_length: 1.0, dt: 1e-4 };
+    let ctx = PointContext {
+        char_length: 1.0,
+        dt: 1e-4,
+    };
     let mut f = [[0.0; 3]; 8];
     match integration {
         Integration::OnePoint => {
@@ -89,9 +93,14 @@ proptest! {
 }
 
 fn run_with_threads(threads: usize) -> (Vec<[f64; 3]>, f64) {
-    let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(threads)
+        .build()
+        .unwrap();
     pool.install(|| {
-        let mesh = BoxMeshSpec::single("b", [0.0; 3], [12.0, 12.0, 12.0], [12, 12, 12]).build("t").unwrap();
+        let mesh = BoxMeshSpec::single("b", [0.0; 3], [12.0, 12.0, 12.0], [12, 12, 12])
+            .build("t")
+            .unwrap();
         let setups: Vec<RegionSetup> = vec![RegionSetup {
             region: "b".into(),
             material: material(),

@@ -30,14 +30,20 @@ fn w01_s_fixed_scalars() {
     let m = w01_wave_pulses::measure(&ColumnSetup::w1(Wave::S, TopEnd::Fixed)).unwrap();
     insta::assert_yaml_snapshot!(
         "w01_s_fixed",
-        vec![("mid_peak_stress_pa", r4(m.mid_peak_stress)), ("top_peak_stress_pa", r4(m.top_peak_stress))]
+        vec![
+            ("mid_peak_stress_pa", r4(m.mid_peak_stress)),
+            ("top_peak_stress_pa", r4(m.top_peak_stress))
+        ]
     );
 }
 
 #[test]
 fn energy_means() {
     let (scheme, _) = energy_conservation::measure(Integration::OnePoint, 2000).unwrap();
-    insta::assert_yaml_snapshot!("energy_one_point_2000_steps", vec![r4(scheme[0]), r4(scheme[1])]);
+    insta::assert_yaml_snapshot!(
+        "energy_one_point_2000_steps",
+        vec![r4(scheme[0]), r4(scheme[1])]
+    );
 }
 
 #[test]

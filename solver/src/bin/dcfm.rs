@@ -14,7 +14,11 @@ use dcfm::case::load_case;
 use dcfm::stage::run::{run_case, RunOptions};
 
 #[derive(Parser)]
-#[command(name = "dcfm", version, about = "Explicit dynamics with the dynamic contact force method")]
+#[command(
+    name = "dcfm",
+    version,
+    about = "Explicit dynamics with the dynamic contact force method"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Command,
@@ -53,7 +57,12 @@ fn main() -> ExitCode {
             Ok(c) => {
                 let m = &c.model;
                 println!("case      {} ({})", case.display(), c.title);
-                println!("mesh      {} nodes, {} hex8 elements, {} colours", m.mesh.n_nodes(), m.n_elements(), m.n_colours);
+                println!(
+                    "mesh      {} nodes, {} hex8 elements, {} colours",
+                    m.mesh.n_nodes(),
+                    m.n_elements(),
+                    m.n_colours
+                );
                 for g in &m.groups {
                     println!(
                         "region    {:<16} {:>8} elements  {:<9} {}  E = {:.3e} Pa  ν = {}  ρ = {} kg/m³",
@@ -77,7 +86,13 @@ fn main() -> ExitCode {
                     m.stable.speed,
                     m.critical_step_with_damping()
                 );
-                println!("time      Δt = {:.4e} s (safety {}), end {} s → {} steps", c.dt, c.safety, c.end, (c.end / c.dt).ceil());
+                println!(
+                    "time      Δt = {:.4e} s (safety {}), end {} s → {} steps",
+                    c.dt,
+                    c.safety,
+                    c.end,
+                    (c.end / c.dt).ceil()
+                );
                 println!("memory    {:.0} bytes per element", m.bytes_per_element());
                 ExitCode::SUCCESS
             }
@@ -86,19 +101,32 @@ fn main() -> ExitCode {
                 ExitCode::from(2)
             }
         },
-        Command::Run { case, out, threads, resume, quiet } => {
+        Command::Run {
+            case,
+            out,
+            threads,
+            resume,
+            quiet,
+        } => {
             if let Some(n) = threads {
                 if n == 0 {
                     eprintln!("error: --threads 0: expected at least 1");
                     return ExitCode::from(2);
                 }
-                if let Err(e) = rayon::ThreadPoolBuilder::new().num_threads(n).build_global() {
+                if let Err(e) = rayon::ThreadPoolBuilder::new()
+                    .num_threads(n)
+                    .build_global()
+                {
                     eprintln!("error: --threads {n}: {e}");
                     return ExitCode::from(2);
                 }
             }
             let out = out.unwrap_or_else(|| {
-                PathBuf::from("results").join(case.file_stem().map(|s| s.to_string_lossy().to_string()).unwrap_or_else(|| "case".into()))
+                PathBuf::from("results").join(
+                    case.file_stem()
+                        .map(|s| s.to_string_lossy().to_string())
+                        .unwrap_or_else(|| "case".into()),
+                )
             });
             let loaded = match load_case(&case) {
                 Ok(c) => c,
@@ -107,7 +135,11 @@ fn main() -> ExitCode {
                     return ExitCode::from(2);
                 }
             };
-            let opts = RunOptions { out: out.clone(), resume, progress: !quiet };
+            let opts = RunOptions {
+                out: out.clone(),
+                resume,
+                progress: !quiet,
+            };
             match run_case(loaded, &opts) {
                 Ok(s) => {
                     println!(

@@ -74,7 +74,11 @@ impl Constraints {
     /// Add a prescribed motion. Returns the first node whose DOF was already constrained.
     pub fn prescribe(&mut self, p: Prescribed) -> Result<(), u32> {
         let bit = 1u8 << p.dof;
-        if let Some(&n) = p.nodes.iter().find(|&&n| self.constrained[n as usize] & bit != 0) {
+        if let Some(&n) = p
+            .nodes
+            .iter()
+            .find(|&&n| self.constrained[n as usize] & bit != 0)
+        {
             return Err(n);
         }
         for &n in &p.nodes {

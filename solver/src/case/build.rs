@@ -47,14 +47,24 @@ fn finite_positive(label: &str, field: &str, v: f64, what: &str) -> Result<()> {
     if v.is_finite() && v > 0.0 {
         Ok(())
     } else {
-        Err(DcfmError::invalid(label, field, v, format!("must be finite and > 0 ({what})")))
+        Err(DcfmError::invalid(
+            label,
+            field,
+            v,
+            format!("must be finite and > 0 ({what})"),
+        ))
     }
 }
 
 fn dof_mask(label: &str, field: &str, dofs: &str) -> Result<u8> {
     let mut mask = 0u8;
     if dofs.is_empty() {
-        return Err(DcfmError::invalid(label, field, "\"\"", "one or more of x, y, z (e.g. \"xyz\")"));
+        return Err(DcfmError::invalid(
+            label,
+            field,
+            "\"\"",
+            "one or more of x, y, z (e.g. \"xyz\")",
+        ));
     }
     for ch in dofs.chars() {
         mask |= match ch {
@@ -62,7 +72,12 @@ fn dof_mask(label: &str, field: &str, dofs: &str) -> Result<u8> {
             'y' => 2,
             'z' => 4,
             _ => {
-                return Err(DcfmError::invalid(label, field, format!("\"{dofs}\""), "only the letters x, y, z"))
+                return Err(DcfmError::invalid(
+                    label,
+                    field,
+                    format!("\"{dofs}\""),
+                    "only the letters x, y, z",
+                ))
             }
         };
     }
@@ -72,12 +87,20 @@ fn dof_mask(label: &str, field: &str, dofs: &str) -> Result<u8> {
 fn nodes_of(mesh: &Mesh, label: &str, field: &str, set: &str) -> Result<Vec<u32>> {
     match mesh.nodes_of(set) {
         Some(n) if !n.is_empty() => Ok(n),
-        Some(_) => Err(DcfmError::invalid(label, field, format!("\"{set}\""), "a set with at least one node")),
+        Some(_) => Err(DcfmError::invalid(
+            label,
+            field,
+            format!("\"{set}\""),
+            "a set with at least one node",
+        )),
         None => Err(DcfmError::invalid(
             label,
             field,
             format!("\"{set}\""),
-            format!("a node, face or element set or a region; known: {}", mesh.set_names().join(", ")),
+            format!(
+                "a node, face or element set or a region; known: {}",
+                mesh.set_names().join(", ")
+            ),
         )),
     }
 }
@@ -86,7 +109,12 @@ fn build(file: CaseFile, label: &str, dir: &Path) -> Result<Case> {
     // Time.
     finite_positive(label, "time.end", file.time.end, "s")?;
     if !(file.time.safety.is_finite() && file.time.safety > 0.0 && file.time.safety <= 1.0) {
-        return Err(DcfmError::invalid(label, "time.safety", file.time.safety, "must be in (0, 1]"));
+        return Err(DcfmError::invalid(
+            label,
+            "time.safety",
+            file.time.safety,
+            "must be in (0, 1]",
+        ));
     }
     if let Some(dt) = file.time.dt {
         finite_positive(label, "time.dt", dt, "s")?;
@@ -94,18 +122,35 @@ fn build(file: CaseFile, label: &str, dir: &Path) -> Result<Case> {
     // Mesh.
     let mut mesh = match (&file.mesh.gmsh, file.mesh.blocks.is_empty()) {
         (Some(_), false) => {
-            return Err(DcfmError::invalid(label, "mesh", "gmsh and blocks", "either a gmsh file or blocks, not both"))
+            return Err(DcfmError::invalid(
+                label,
+                "mesh",
+                "gmsh and blocks",
+                "either a gmsh file or blocks, not both",
+            ))
         }
         (None, true) => {
-            return Err(DcfmError::invalid(label, "mesh", "{}", "a gmsh file (mesh.gmsh) or [[mesh.blocks]]"))
+            return Err(DcfmError::invalid(
+                label,
+                "mesh",
+                "{}",
+                "a gmsh file (mesh.gmsh) or [[mesh.blocks]]",
+            ))
         }
         (Some(g), true) => {
             let path = dir.join(g);
             let mut mesh = crate::mesh::gmsh::read_gmsh(&path)?;
             for (si, [a, b]) in file.mesh.split.iter().enumerate() {
-                crate::mesh::box_generator::split_between_regions(&mut mesh, a, b).map_err(|msg| {
-                    DcfmError::invalid(label, format!("mesh.split[{si}]"), format!("[{a}, {b}]"), msg)
-                })?;
+                crate::mesh::box_generator::split_between_regions(&mut mesh, a, b).map_err(
+                    |msg| {
+                        DcfmError::invalid(
+                            label,
+                            format!("mesh.split[{si}]"),
+                            format!("[{a}, {b}]"),
+                            msg,
+                        )
+                    },
+                )?;
             }
             mesh
         }
@@ -116,12 +161,22 @@ fn build(file: CaseFile, label: &str, dir: &Path) -> Result<Case> {
         let field = format!("node_sets.{name}");
         let mut nodes = s.nodes.clone();
         if let Some(&bad) = nodes.iter().find(|&&n| n as usize >= mesh.n_nodes()) {
-            return Err(DcfmError::invalid(label, format!("{field}.nodes"), bad, format!("node ids below {}", mesh.n_nodes())));
+            return Err(DcfmError::invalid(
+                label,
+                format!("{field}.nodes"),
+                bad,
+                format!("node ids below {}", mesh.n_nodes()),
+            ));
         }
         if let Some([lo, hi]) = s.bounds {
             for d in 0..3 {
                 if !(lo[d].is_finite() && hi[d].is_finite() && lo[d] <= hi[d]) {
-                    return Err(DcfmError::invalid(label, format!("{field}.box"), format!("{lo:?}..{hi:?}"), "finite corners with min ≤ max"));
+                    return Err(DcfmError::invalid(
+                        label,
+                        format!("{field}.box"),
+                        format!("{lo:?}..{hi:?}"),
+                        "finite corners with min ≤ max",
+                    ));
                 }
             }
             let slack = 1e-9;
@@ -134,7 +189,12 @@ fn build(file: CaseFile, label: &str, dir: &Path) -> Result<Case> {
         nodes.sort_unstable();
         nodes.dedup();
         if nodes.is_empty() {
-            return Err(DcfmError::invalid(label, field, "[]", "at least one node (nodes = [...] or box = [[..],[..]])"));
+            return Err(DcfmError::invalid(
+                label,
+                field,
+                "[]",
+                "at least one node (nodes = [...] or box = [[..],[..]])",
+            ));
         }
         mesh.node_sets.insert(name.clone(), nodes);
     }
@@ -153,20 +213,35 @@ fn build(file: CaseFile, label: &str, dir: &Path) -> Result<Case> {
         let material = match m.model {
             ModelKind::Elastic => {
                 if m.plastic_damage.is_some() {
-                    return Err(DcfmError::invalid(label, format!("{field}.plastic_damage"), "given", "only with model = \"plastic_damage\""));
+                    return Err(DcfmError::invalid(
+                        label,
+                        format!("{field}.plastic_damage"),
+                        "given",
+                        "only with model = \"plastic_damage\"",
+                    ));
                 }
                 Material::Elastic(elastic)
             }
             ModelKind::PlasticDamage => {
                 let Some(p) = &m.plastic_damage else {
-                    return Err(DcfmError::invalid(label, format!("{field}.plastic_damage"), "missing", "a [materials.NAME.plastic_damage] table"));
+                    return Err(DcfmError::invalid(
+                        label,
+                        format!("{field}.plastic_damage"),
+                        "missing",
+                        "a [materials.NAME.plastic_damage] table",
+                    ));
                 };
-                Material::PlasticDamage(Box::new(PlasticDamage::new(name, elastic, p).map_err(|e| match e {
-                    DcfmError::Material { material, message } => {
-                        DcfmError::invalid(label, format!("materials.{material}.plastic_damage"), "", message)
-                    }
-                    other => other,
-                })?))
+                Material::PlasticDamage(Box::new(PlasticDamage::new(name, elastic, p).map_err(
+                    |e| match e {
+                        DcfmError::Material { material, message } => DcfmError::invalid(
+                            label,
+                            format!("materials.{material}.plastic_damage"),
+                            "",
+                            message,
+                        ),
+                        other => other,
+                    },
+                )?))
             }
         };
         materials.insert(name.clone(), material);
@@ -179,11 +254,21 @@ fn build(file: CaseFile, label: &str, dir: &Path) -> Result<Case> {
                 label,
                 format!("regions[{ri}].material"),
                 format!("\"{}\"", r.material),
-                format!("one of the [materials] tables: {:?}", materials.keys().collect::<Vec<_>>()),
+                format!(
+                    "one of the [materials] tables: {:?}",
+                    materials.keys().collect::<Vec<_>>()
+                ),
             ));
         };
-        if r.integration == Integration::OnePoint && !(r.hourglass.is_finite() && (0.0..=0.5).contains(&r.hourglass)) {
-            return Err(DcfmError::invalid(label, format!("regions[{ri}].hourglass"), r.hourglass, "must be in [0, 0.5]"));
+        if r.integration == Integration::OnePoint
+            && !(r.hourglass.is_finite() && (0.0..=0.5).contains(&r.hourglass))
+        {
+            return Err(DcfmError::invalid(
+                label,
+                format!("regions[{ri}].hourglass"),
+                r.hourglass,
+                "must be in [0, 0.5]",
+            ));
         }
         setups.push(RegionSetup {
             region: r.name.clone(),
@@ -210,14 +295,24 @@ fn build(file: CaseFile, label: &str, dir: &Path) -> Result<Case> {
     // Boundary conditions.
     for (k, f) in file.boundary.fixed.iter().enumerate() {
         let mask = dof_mask(label, &format!("boundary.fixed[{k}].dofs"), &f.dofs)?;
-        let nodes = nodes_of(&model.mesh, label, &format!("boundary.fixed[{k}].set"), &f.set)?;
+        let nodes = nodes_of(
+            &model.mesh,
+            label,
+            &format!("boundary.fixed[{k}].set"),
+            &f.set,
+        )?;
         model.constraints.fix(&nodes, mask);
     }
     for (k, p) in file.boundary.prescribed.iter().enumerate() {
         let field = format!("boundary.prescribed[{k}]");
         let mask = dof_mask(label, &format!("{field}.dof"), &p.dof)?;
         if mask.count_ones() != 1 {
-            return Err(DcfmError::invalid(label, format!("{field}.dof"), format!("\"{}\"", p.dof), "exactly one of x, y, z"));
+            return Err(DcfmError::invalid(
+                label,
+                format!("{field}.dof"),
+                format!("\"{}\"", p.dof),
+                "exactly one of x, y, z",
+            ));
         }
         p.history.validate(label, &format!("{field}.history"))?;
         let nodes = nodes_of(&model.mesh, label, &format!("{field}.set"), &p.set)?;
@@ -229,56 +324,113 @@ fn build(file: CaseFile, label: &str, dir: &Path) -> Result<Case> {
                 kind: p.kind,
                 history: p.history.clone(),
             })
-            .map_err(|n| DcfmError::invalid(label, format!("{field}.set"), &p.set, format!("node {n} already has this DOF fixed or prescribed")))?;
+            .map_err(|n| {
+                DcfmError::invalid(
+                    label,
+                    format!("{field}.set"),
+                    &p.set,
+                    format!("node {n} already has this DOF fixed or prescribed"),
+                )
+            })?;
     }
     // Loads.
     let unit = TimeFunction::Constant { value: 1.0 };
     for (k, l) in file.loads.nodal.iter().enumerate() {
         let field = format!("loads.nodal[{k}]");
         if !l.force.iter().all(|f| f.is_finite()) {
-            return Err(DcfmError::invalid(label, format!("{field}.force"), format!("{:?}", l.force), "finite components (N)"));
+            return Err(DcfmError::invalid(
+                label,
+                format!("{field}.force"),
+                format!("{:?}", l.force),
+                "finite components (N)",
+            ));
         }
         let history = l.history.clone().unwrap_or(unit.clone());
         history.validate(label, &format!("{field}.history"))?;
         let nodes = nodes_of(&model.mesh, label, &format!("{field}.set"), &l.set)?;
-        model.nodal_loads.push(NodalLoad { nodes, force: l.force, history });
+        model.nodal_loads.push(NodalLoad {
+            nodes,
+            force: l.force,
+            history,
+        });
     }
     if let Some(g) = &file.loads.gravity {
         if !g.acceleration.iter().all(|a| a.is_finite()) {
-            return Err(DcfmError::invalid(label, "loads.gravity.acceleration", format!("{:?}", g.acceleration), "finite components (m/s²)"));
+            return Err(DcfmError::invalid(
+                label,
+                "loads.gravity.acceleration",
+                format!("{:?}", g.acceleration),
+                "finite components (m/s²)",
+            ));
         }
         let history = g.history.clone().unwrap_or(unit.clone());
         history.validate(label, "loads.gravity.history")?;
-        model.gravity = Some(Gravity { acceleration: g.acceleration, history });
+        model.gravity = Some(Gravity {
+            acceleration: g.acceleration,
+            history,
+        });
     }
     // Damping.
     for (name, v) in [("alpha", file.damping.alpha), ("beta", file.damping.beta)] {
         if !(v.is_finite() && v >= 0.0) {
-            return Err(DcfmError::invalid(label, format!("damping.{name}"), v, "must be finite and ≥ 0"));
+            return Err(DcfmError::invalid(
+                label,
+                format!("damping.{name}"),
+                v,
+                "must be finite and ≥ 0",
+            ));
         }
     }
-    model.damping = Rayleigh { alpha: file.damping.alpha, beta: file.damping.beta };
+    model.damping = Rayleigh {
+        alpha: file.damping.alpha,
+        beta: file.damping.beta,
+    };
     // Initial velocities.
     for (k, iv) in file.initial.velocity.iter().enumerate() {
         if !iv.value.iter().all(|v| v.is_finite()) {
-            return Err(DcfmError::invalid(label, format!("initial.velocity[{k}].value"), format!("{:?}", iv.value), "finite components (m/s)"));
+            return Err(DcfmError::invalid(
+                label,
+                format!("initial.velocity[{k}].value"),
+                format!("{:?}", iv.value),
+                "finite components (m/s)",
+            ));
         }
-        let nodes = nodes_of(&model.mesh, label, &format!("initial.velocity[{k}].set"), &iv.set)?;
+        let nodes = nodes_of(
+            &model.mesh,
+            label,
+            &format!("initial.velocity[{k}].set"),
+            &iv.set,
+        )?;
         model.initial_velocity.push((nodes, iv.value));
     }
     // Outputs.
     for (k, &n) in file.output.nodes.iter().enumerate() {
         if n as usize >= model.mesh.n_nodes() {
-            return Err(DcfmError::invalid(label, format!("output.nodes[{k}]"), n, format!("a node id below {}", model.mesh.n_nodes())));
+            return Err(DcfmError::invalid(
+                label,
+                format!("output.nodes[{k}]"),
+                n,
+                format!("a node id below {}", model.mesh.n_nodes()),
+            ));
         }
     }
     for (k, &e) in file.output.elements.iter().enumerate() {
         if e as usize >= model.n_elements() {
-            return Err(DcfmError::invalid(label, format!("output.elements[{k}]"), e, format!("an element id below {}", model.n_elements())));
+            return Err(DcfmError::invalid(
+                label,
+                format!("output.elements[{k}]"),
+                e,
+                format!("an element id below {}", model.n_elements()),
+            ));
         }
     }
     if file.output.history_every == 0 {
-        return Err(DcfmError::invalid(label, "output.history_every", 0, "at least 1 (steps)"));
+        return Err(DcfmError::invalid(
+            label,
+            "output.history_every",
+            0,
+            "at least 1 (steps)",
+        ));
     }
     // Time step.
     let stable = file.time.safety * model.critical_step_with_damping();

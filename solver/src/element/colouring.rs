@@ -25,7 +25,9 @@ mod tests {
 
     #[test]
     fn structured_box_needs_eight_colours_and_no_conflicts() {
-        let m = BoxMeshSpec::single("b", [0.0; 3], [1.0; 3], [4, 3, 5]).build("t").unwrap();
+        let m = BoxMeshSpec::single("b", [0.0; 3], [1.0; 3], [4, 3, 5])
+            .build("t")
+            .unwrap();
         let c = colour_elements(&m.elements, m.n_nodes());
         assert_eq!(*c.iter().max().unwrap(), 7);
         for col in 0..8u8 {

@@ -98,7 +98,10 @@ impl ElementGroup {
             *range = start..start + len;
             start += len;
         }
-        let conn: Vec<[u32; 8]> = elements.iter().map(|&e| mesh.elements[e as usize]).collect();
+        let conn: Vec<[u32; 8]> = elements
+            .iter()
+            .map(|&e| mesh.elements[e as usize])
+            .collect();
         let mut char_length = Vec::with_capacity(elements.len());
         let mut volume = Vec::with_capacity(elements.len());
         let bad = |e: u32| DcfmError::BadElement {
@@ -110,7 +113,8 @@ impl ElementGroup {
                 let mut g = Vec::with_capacity(elements.len());
                 for &e in &elements {
                     let x = mesh.element_coords(e as usize);
-                    let geo = UniformGeometry::new(&x, material.elastic(), hourglass).ok_or_else(|| bad(e))?;
+                    let geo = UniformGeometry::new(&x, material.elastic(), hourglass)
+                        .ok_or_else(|| bad(e))?;
                     char_length.push(characteristic_length(&x, geo.volume));
                     volume.push(geo.volume);
                     g.push(geo);
@@ -209,7 +213,10 @@ impl ElementGroup {
             } else {
                 [[0.0; 3]; 8]
             };
-            let ctx = PointContext { char_length: lengths[le], dt };
+            let ctx = PointContext {
+                char_length: lengths[le],
+                dt,
+            };
             let old_s = &old[le * stride..(le + 1) * stride];
             // SAFETY: each element owns the state slice [le*stride, (le+1)*stride).
             let new_s = unsafe { std::slice::from_raw_parts_mut(new_ptr.at(le * stride), stride) };
@@ -217,7 +224,9 @@ impl ElementGroup {
             let mut fd = [[0.0; 3]; 8];
             match geometry {
                 GroupGeometry::Uniform(g) => {
-                    hex8_uniform::internal_force(&g[le], material, &ue, old_s, new_s, &ctx, &mut fe);
+                    hex8_uniform::internal_force(
+                        &g[le], material, &ue, old_s, new_s, &ctx, &mut fe,
+                    );
                     if beta > 0.0 {
                         damping_force_uniform(&g[le], material, &ve, beta, &mut fd);
                     }
@@ -269,7 +278,9 @@ impl ElementGroup {
                 for gp in 0..8 {
                     let eps = g[le].strain(gp, &ue);
                     let p = le * 8 + gp;
-                    let s = self.material.stress_from_state(&eps, &state[p * stride..(p + 1) * stride]);
+                    let s = self
+                        .material
+                        .stress_from_state(&eps, &state[p * stride..(p + 1) * stride]);
                     let w = g[le].wdet[gp] / vol;
                     for i in 0..6 {
                         em[i] += w * eps[i];
@@ -283,7 +294,10 @@ impl ElementGroup {
 
     /// [`ElementGroup::strain_stress_of`] for every element, in the group's order.
     pub fn element_strain_stress(&self, u: &[[f64; 3]]) -> Vec<(Voigt, Voigt)> {
-        (0..self.len()).into_par_iter().map(|le| self.strain_stress_of(le, u)).collect()
+        (0..self.len())
+            .into_par_iter()
+            .map(|le| self.strain_stress_of(le, u))
+            .collect()
     }
 
     /// Element-average damage D (0 for models without damage), in the group's order.
@@ -344,7 +358,13 @@ fn dot6(a: &Voigt, b: &Voigt) -> f64 {
 /// Stiffness-proportional damping force β K0 v of a one-point element (initial stiffness,
 /// hourglass included).
 #[inline(always)]
-fn damping_force_uniform(g: &UniformGeometry, material: &Material, v: &[[f64; 3]; 8], beta: f64, f: &mut [[f64; 3]; 8]) {
+fn damping_force_uniform(
+    g: &UniformGeometry,
+    material: &Material,
+    v: &[[f64; 3]; 8],
+    beta: f64,
+    f: &mut [[f64; 3]; 8],
+) {
     let s = material.elastic().stress(&g.strain(v)).map(|x| beta * x);
     let q = g.hourglass_modes(v).map(|r| r.map(|x| beta * x));
     g.forces(&s, &q, f);
@@ -352,9 +372,18 @@ fn damping_force_uniform(g: &UniformGeometry, material: &Material, v: &[[f64; 3]
 
 /// Stiffness-proportional damping force β K0 v of a fully integrated element.
 #[inline(always)]
-fn damping_force_full(g: &FullGeometry, material: &Material, v: &[[f64; 3]; 8], beta: f64, f: &mut [[f64; 3]; 8]) {
+fn damping_force_full(
+    g: &FullGeometry,
+    material: &Material,
+    v: &[[f64; 3]; 8],
+    beta: f64,
+    f: &mut [[f64; 3]; 8],
+) {
     for gp in 0..8 {
-        let s = material.elastic().stress(&g.strain(gp, v)).map(|x| beta * x);
+        let s = material
+            .elastic()
+            .stress(&g.strain(gp, v))
+            .map(|x| beta * x);
         g.add_forces(gp, &s, f);
     }
 }

@@ -65,7 +65,7 @@ pub fn jacobian(x: &[[f64; 3]; 8], dn: &[[f64; 3]; 8]) -> ([[f64; 3]; 3], f64) {
 pub fn cartesian_derivatives(x: &[[f64; 3]; 8], xi: &[f64; 3]) -> Option<([[f64; 3]; 8], f64)> {
     let dn = shape_derivatives(xi);
     let (j, det) = jacobian(x, &dn);
-    if !(det > 0.0) {
+    if det.is_nan() || det <= 0.0 {
         return None;
     }
     // inv(J) via cofactors; ∂N/∂x_i = Σ_k ∂N/∂ξ_k (J⁻¹)_ki.

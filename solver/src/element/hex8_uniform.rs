@@ -65,7 +65,12 @@ impl UniformGeometry {
         }
         let bb: f64 = b.iter().flatten().map(|v| v * v).sum();
         let kappa = hourglass * elastic.p_modulus() * volume * bb / 8.0;
-        Some(Self { b, volume, gamma, kappa })
+        Some(Self {
+            b,
+            volume,
+            gamma,
+            kappa,
+        })
     }
 
     /// Strain ε = Σ_a B_a u_a (Voigt, engineering shear).
@@ -176,7 +181,12 @@ mod tests {
             grad[0][2] + grad[2][0],
         ];
         for i in 0..6 {
-            assert!((e[i] - expect[i]).abs() < 1e-15, "{i}: {} vs {}", e[i], expect[i]);
+            assert!(
+                (e[i] - expect[i]).abs() < 1e-15,
+                "{i}: {} vs {}",
+                e[i],
+                expect[i]
+            );
         }
         let q = g.hourglass_modes(&u);
         for row in q {

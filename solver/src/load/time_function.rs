@@ -56,14 +56,24 @@ impl TimeFunction {
             if v.is_finite() {
                 Ok(())
             } else {
-                Err(DcfmError::invalid(file, format!("{field}.{name}"), v, "must be finite"))
+                Err(DcfmError::invalid(
+                    file,
+                    format!("{field}.{name}"),
+                    v,
+                    "must be finite",
+                ))
             }
         };
         let positive = |name: &str, v: f64| -> Result<()> {
             if v.is_finite() && v > 0.0 {
                 Ok(())
             } else {
-                Err(DcfmError::invalid(file, format!("{field}.{name}"), v, "must be finite and > 0"))
+                Err(DcfmError::invalid(
+                    file,
+                    format!("{field}.{name}"),
+                    v,
+                    "must be finite and > 0",
+                ))
             }
         };
         match self {
@@ -72,22 +82,38 @@ impl TimeFunction {
                 finite("rate", *rate)?;
                 finite("start", *start)
             }
-            TimeFunction::HalfSine { amplitude, period, start } => {
+            TimeFunction::HalfSine {
+                amplitude,
+                period,
+                start,
+            } => {
                 finite("amplitude", *amplitude)?;
                 positive("period", *period)?;
                 finite("start", *start)
             }
-            TimeFunction::SineSquared { amplitude, period, start } => {
+            TimeFunction::SineSquared {
+                amplitude,
+                period,
+                start,
+            } => {
                 finite("amplitude", *amplitude)?;
                 positive("period", *period)?;
                 finite("start", *start)
             }
-            TimeFunction::Sine { amplitude, frequency, phase } => {
+            TimeFunction::Sine {
+                amplitude,
+                frequency,
+                phase,
+            } => {
                 finite("amplitude", *amplitude)?;
                 positive("frequency", *frequency)?;
                 finite("phase", *phase)
             }
-            TimeFunction::Pulse { amplitude, duration, start } => {
+            TimeFunction::Pulse {
+                amplitude,
+                duration,
+                start,
+            } => {
                 finite("amplitude", *amplitude)?;
                 positive("duration", *duration)?;
                 finite("start", *start)
@@ -102,7 +128,7 @@ impl TimeFunction {
                     ));
                 }
                 for (i, w) in times.windows(2).enumerate() {
-                    if !(w[1] > w[0]) {
+                    if w[1].is_nan() || w[1] <= w[0] {
                         return Err(DcfmError::invalid(
                             file,
                             format!("{field}.times[{}]", i + 1),
@@ -113,7 +139,12 @@ impl TimeFunction {
                 }
                 for (i, v) in times.iter().chain(values).enumerate() {
                     if !v.is_finite() {
-                        return Err(DcfmError::invalid(file, format!("{field}[{i}]"), v, "must be finite"));
+                        return Err(DcfmError::invalid(
+                            file,
+                            format!("{field}[{i}]"),
+                            v,
+                            "must be finite",
+                        ));
                     }
                 }
                 Ok(())
@@ -132,7 +163,11 @@ impl TimeFunction {
                     0.0
                 }
             }
-            TimeFunction::HalfSine { amplitude, period, start } => {
+            TimeFunction::HalfSine {
+                amplitude,
+                period,
+                start,
+            } => {
                 let s = t - start;
                 if (0.0..=*period).contains(&s) {
                     amplitude * (std::f64::consts::PI * s / period).sin()
@@ -140,7 +175,11 @@ impl TimeFunction {
                     0.0
                 }
             }
-            TimeFunction::SineSquared { amplitude, period, start } => {
+            TimeFunction::SineSquared {
+                amplitude,
+                period,
+                start,
+            } => {
                 let s = t - start;
                 if (0.0..=*period).contains(&s) {
                     amplitude * (std::f64::consts::PI * s / period).sin().powi(2)
@@ -148,10 +187,16 @@ impl TimeFunction {
                     0.0
                 }
             }
-            TimeFunction::Sine { amplitude, frequency, phase } => {
-                amplitude * (2.0 * std::f64::consts::PI * frequency * t + phase).sin()
-            }
-            TimeFunction::Pulse { amplitude, duration, start } => {
+            TimeFunction::Sine {
+                amplitude,
+                frequency,
+                phase,
+            } => amplitude * (2.0 * std::f64::consts::PI * frequency * t + phase).sin(),
+            TimeFunction::Pulse {
+                amplitude,
+                duration,
+                start,
+            } => {
                 if t >= *start && t < start + duration {
                     *amplitude
                 } else {
@@ -186,21 +231,35 @@ impl TimeFunction {
                     0.0
                 }
             }
-            TimeFunction::HalfSine { amplitude, period, start } => {
+            TimeFunction::HalfSine {
+                amplitude,
+                period,
+                start,
+            } => {
                 let s = (t - start).clamp(0.0, *period);
                 amplitude * period / PI * (1.0 - (PI * s / period).cos())
             }
-            TimeFunction::SineSquared { amplitude, period, start } => {
+            TimeFunction::SineSquared {
+                amplitude,
+                period,
+                start,
+            } => {
                 let s = (t - start).clamp(0.0, *period);
                 amplitude * (0.5 * s - period / (4.0 * PI) * (2.0 * PI * s / period).sin())
             }
-            TimeFunction::Sine { amplitude, frequency, phase } => {
+            TimeFunction::Sine {
+                amplitude,
+                frequency,
+                phase,
+            } => {
                 let w = 2.0 * PI * frequency;
                 amplitude / w * (phase.cos() - (w * t + phase).cos())
             }
-            TimeFunction::Pulse { amplitude, duration, start } => {
-                amplitude * (t - start).clamp(0.0, *duration)
-            }
+            TimeFunction::Pulse {
+                amplitude,
+                duration,
+                start,
+            } => amplitude * (t - start).clamp(0.0, *duration),
             TimeFunction::Table { times, values } => {
                 let mut acc = 0.0;
                 let mut prev_t = 0.0f64.min(times[0]);
@@ -231,20 +290,30 @@ mod tests {
     #[test]
     fn half_sine_integral_is_net_displacement() {
         // VERIFICATION.md W1: net displacement 2 v0 T / π = 1.2732 mm for v0 0.1, T 0.02.
-        let h = TimeFunction::HalfSine { amplitude: 0.1, period: 0.02, start: 0.0 };
+        let h = TimeFunction::HalfSine {
+            amplitude: 0.1,
+            period: 0.02,
+            start: 0.0,
+        };
         assert!((h.integral(1.0) - 1.2732e-3).abs() < 1e-7);
         assert!((h.value(0.01) - 0.1).abs() < 1e-15);
     }
 
     #[test]
     fn table_interpolates_and_integrates() {
-        let h = TimeFunction::Table { times: vec![0.0, 1.0, 2.0], values: vec![0.0, 2.0, 2.0] };
+        let h = TimeFunction::Table {
+            times: vec![0.0, 1.0, 2.0],
+            values: vec![0.0, 2.0, 2.0],
+        };
         assert_eq!(h.value(0.5), 1.0);
         assert!((h.integral(2.0) - 3.0).abs() < 1e-14);
-        assert!(TimeFunction::Table { times: vec![1.0, 1.0], values: vec![0.0, 1.0] }
-            .validate("c.toml", "loads[0].history")
-            .unwrap_err()
-            .to_string()
-            .contains("c.toml: loads[0].history.times[1] = 1"));
+        assert!(TimeFunction::Table {
+            times: vec![1.0, 1.0],
+            values: vec![0.0, 1.0]
+        }
+        .validate("c.toml", "loads[0].history")
+        .unwrap_err()
+        .to_string()
+        .contains("c.toml: loads[0].history.times[1] = 1"));
     }
 }

@@ -27,13 +27,17 @@ impl Elastic {
             message: msg,
         };
         if !(young.is_finite() && young > 0.0) {
-            return Err(bad(format!("young = {young}: must be a finite value > 0 (Pa)")));
+            return Err(bad(format!(
+                "young = {young}: must be a finite value > 0 (Pa)"
+            )));
         }
         if !(poisson.is_finite() && poisson > -1.0 && poisson < 0.5) {
             return Err(bad(format!("poisson = {poisson}: must be in (-1, 0.5)")));
         }
         if !(density.is_finite() && density > 0.0) {
-            return Err(bad(format!("density = {density}: must be a finite value > 0 (kg/m³)")));
+            return Err(bad(format!(
+                "density = {density}: must be a finite value > 0 (kg/m³)"
+            )));
         }
         let mu = young / (2.0 * (1.0 + poisson));
         let lambda = young * poisson / ((1.0 + poisson) * (1.0 - 2.0 * poisson));
@@ -126,7 +130,12 @@ mod tests {
 
     #[test]
     fn rejects_bad_poisson() {
-        let err = Elastic::new("rock", 1e9, 0.7, 2000.0).unwrap_err().to_string();
-        assert!(err.contains("rock") && err.contains("poisson = 0.7"), "{err}");
+        let err = Elastic::new("rock", 1e9, 0.7, 2000.0)
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains("rock") && err.contains("poisson = 0.7"),
+            "{err}"
+        );
     }
 }

@@ -25,7 +25,13 @@ impl PlasticDamage {
         0
     }
     pub fn init_state(&self, _s: &mut [f64]) {}
-    pub fn update(&self, strain: &Voigt, _old: &[f64], _new: &mut [f64], _ctx: &PointContext) -> Voigt {
+    pub fn update(
+        &self,
+        strain: &Voigt,
+        _old: &[f64],
+        _new: &mut [f64],
+        _ctx: &PointContext,
+    ) -> Voigt {
         self.elastic.stress(strain)
     }
     pub fn stress_from_state(&self, strain: &Voigt, _s: &[f64]) -> Voigt {

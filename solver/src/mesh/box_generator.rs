@@ -158,7 +158,10 @@ impl BoxMeshSpec {
                 "at most 50 million elements in all",
             ));
         }
-        if !(self.merge_tolerance.is_finite() && self.merge_tolerance > 0.0 && self.merge_tolerance < 0.1) {
+        if !(self.merge_tolerance.is_finite()
+            && self.merge_tolerance > 0.0
+            && self.merge_tolerance < 0.1)
+        {
             return Err(DcfmError::invalid(
                 file,
                 "mesh.merge_tolerance",
@@ -189,7 +192,14 @@ impl BoxMeshSpec {
                 }
             } as u16;
             let pts: Vec<Vec<f64>> = (0..3)
-                .map(|d| axis_points(block.origin[d], block.size[d], block.divisions[d], block.grading[d]))
+                .map(|d| {
+                    axis_points(
+                        block.origin[d],
+                        block.size[d],
+                        block.divisions[d],
+                        block.grading[d],
+                    )
+                })
                 .collect();
             for p in &pts {
                 for w in p.windows(2) {
@@ -198,7 +208,8 @@ impl BoxMeshSpec {
             }
             let [nx, ny, nz] = block.divisions;
             let node0 = mesh.coords.len() as u32;
-            let nid = |i: usize, j: usize, k: usize| node0 + (i + (nx + 1) * (j + (ny + 1) * k)) as u32;
+            let nid =
+                |i: usize, j: usize, k: usize| node0 + (i + (nx + 1) * (j + (ny + 1) * k)) as u32;
             for k in 0..=nz {
                 for j in 0..=ny {
                     for i in 0..=nx {
@@ -225,30 +236,55 @@ impl BoxMeshSpec {
                         mesh.element_region.push(region);
                         // Local faces: 0 ζ−, 1 ζ+, 2 η−, 3 ξ+, 4 η+, 5 ξ−.
                         if i == 0 {
-                            faces[0].push(Face { element: e, local: 5 });
+                            faces[0].push(Face {
+                                element: e,
+                                local: 5,
+                            });
                         }
                         if i == nx - 1 {
-                            faces[1].push(Face { element: e, local: 3 });
+                            faces[1].push(Face {
+                                element: e,
+                                local: 3,
+                            });
                         }
                         if j == 0 {
-                            faces[2].push(Face { element: e, local: 2 });
+                            faces[2].push(Face {
+                                element: e,
+                                local: 2,
+                            });
                         }
                         if j == ny - 1 {
-                            faces[3].push(Face { element: e, local: 4 });
+                            faces[3].push(Face {
+                                element: e,
+                                local: 4,
+                            });
                         }
                         if k == 0 {
-                            faces[4].push(Face { element: e, local: 0 });
+                            faces[4].push(Face {
+                                element: e,
+                                local: 0,
+                            });
                         }
                         if k == nz - 1 {
-                            faces[5].push(Face { element: e, local: 1 });
+                            faces[5].push(Face {
+                                element: e,
+                                local: 1,
+                            });
                         }
                     }
                 }
             }
-            mesh.element_sets
-                .insert(block.name.clone(), (elem0..mesh.elements.len() as u32).collect());
+            mesh.element_sets.insert(
+                block.name.clone(),
+                (elem0..mesh.elements.len() as u32).collect(),
+            );
             for (s, f) in faces.into_iter().enumerate() {
-                let name = format!("{}.{}{}", block.name, AXES[s / 2], if s % 2 == 0 { "min" } else { "max" });
+                let name = format!(
+                    "{}.{}{}",
+                    block.name,
+                    AXES[s / 2],
+                    if s % 2 == 0 { "min" } else { "max" }
+                );
                 mesh.face_sets.insert(name, f);
             }
         }
@@ -263,7 +299,12 @@ impl BoxMeshSpec {
         mesh.node_sets.extend(node_sets);
         for (si, [a, b]) in self.split.iter().enumerate() {
             split_between_regions(&mut mesh, a, b).map_err(|msg| {
-                DcfmError::invalid(file, format!("mesh.split[{si}]"), format!("[{a}, {b}]"), msg)
+                DcfmError::invalid(
+                    file,
+                    format!("mesh.split[{si}]"),
+                    format!("[{a}, {b}]"),
+                    msg,
+                )
             })?;
         }
         mesh.validate()?;
@@ -277,10 +318,12 @@ impl BoxMeshSpec {
 pub fn split_between_regions(mesh: &mut Mesh, a: &str, b: &str) -> std::result::Result<(), String> {
     let ra = mesh
         .region_index(a)
-        .ok_or_else(|| format!("unknown region '{a}' (regions: {:?})", mesh.region_names))? as u16;
+        .ok_or_else(|| format!("unknown region '{a}' (regions: {:?})", mesh.region_names))?
+        as u16;
     let rb = mesh
         .region_index(b)
-        .ok_or_else(|| format!("unknown region '{b}' (regions: {:?})", mesh.region_names))? as u16;
+        .ok_or_else(|| format!("unknown region '{b}' (regions: {:?})", mesh.region_names))?
+        as u16;
     if ra == rb {
         return Err("the two regions must differ".into());
     }
@@ -288,7 +331,13 @@ pub fn split_between_regions(mesh: &mut Mesh, a: &str, b: &str) -> std::result::
     let mut touch = vec![0u8; n];
     for (e, conn) in mesh.elements.iter().enumerate() {
         let r = mesh.element_region[e];
-        let bit = if r == ra { 1 } else if r == rb { 2 } else { 0 };
+        let bit = if r == ra {
+            1
+        } else if r == rb {
+            2
+        } else {
+            0
+        };
         for &a in conn {
             touch[a as usize] |= bit;
         }
@@ -306,7 +355,10 @@ pub fn split_between_regions(mesh: &mut Mesh, a: &str, b: &str) -> std::result::
             }
             for (l, local) in crate::mesh::HEX8_FACES.iter().enumerate() {
                 if local.iter().all(|&q| shared[conn[q] as usize]) {
-                    out.push(Face { element: e as u32, local: l as u8 });
+                    out.push(Face {
+                        element: e as u32,
+                        local: l as u8,
+                    });
                 }
             }
         }
@@ -366,7 +418,9 @@ mod tests {
 
     #[test]
     fn single_block_counts_and_sets() {
-        let m = BoxMeshSpec::single("rock", [0.0; 3], [2.0, 3.0, 4.0], [2, 3, 4]).build("t").unwrap();
+        let m = BoxMeshSpec::single("rock", [0.0; 3], [2.0, 3.0, 4.0], [2, 3, 4])
+            .build("t")
+            .unwrap();
         assert_eq!(m.n_elements(), 24);
         assert_eq!(m.n_nodes(), 3 * 4 * 5);
         assert_eq!(m.face_sets["rock.zmin"].len(), 6);
@@ -377,8 +431,22 @@ mod tests {
     fn two_blocks_merge_then_split() {
         let spec = BoxMeshSpec {
             blocks: vec![
-                BlockSpec { name: "base".into(), region: None, origin: [0.0; 3], size: [1.0, 1.0, 1.0], divisions: [2, 2, 2], grading: [1.0; 3] },
-                BlockSpec { name: "top".into(), region: None, origin: [0.0, 0.0, 1.0], size: [1.0, 1.0, 1.0], divisions: [2, 2, 1], grading: [1.0; 3] },
+                BlockSpec {
+                    name: "base".into(),
+                    region: None,
+                    origin: [0.0; 3],
+                    size: [1.0, 1.0, 1.0],
+                    divisions: [2, 2, 2],
+                    grading: [1.0; 3],
+                },
+                BlockSpec {
+                    name: "top".into(),
+                    region: None,
+                    origin: [0.0, 0.0, 1.0],
+                    size: [1.0, 1.0, 1.0],
+                    divisions: [2, 2, 1],
+                    grading: [1.0; 3],
+                },
             ],
             split: vec![],
             merge_tolerance: 1e-6,
@@ -403,6 +471,9 @@ mod tests {
         let mut s = BoxMeshSpec::single("rock", [0.0; 3], [1.0; 3], [1, 1, 1]);
         s.blocks[0].divisions[1] = 0;
         let err = s.build("case.toml").unwrap_err().to_string();
-        assert!(err.contains("case.toml: mesh.blocks[0].divisions[1] = 0"), "{err}");
+        assert!(
+            err.contains("case.toml: mesh.blocks[0].divisions[1] = 0"),
+            "{err}"
+        );
     }
 }

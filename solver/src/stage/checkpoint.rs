@@ -20,7 +20,20 @@ fn put_f64s(w: &mut impl Write, xs: &[f64]) -> std::io::Result<()> {
 
 fn energies_vec(e: &Energies) -> [f64; 12] {
     let a = e.accumulated;
-    [e.kinetic, e.internal, e.damping, e.contact, e.external, e.input, e.initial_kinetic, a[0], a[1], a[2], a[3], a[4]]
+    [
+        e.kinetic,
+        e.internal,
+        e.damping,
+        e.contact,
+        e.external,
+        e.input,
+        e.initial_kinetic,
+        a[0],
+        a[1],
+        a[2],
+        a[3],
+        a[4],
+    ]
 }
 
 /// Write the simulation's state to `path` (atomically).
@@ -65,10 +78,14 @@ impl Reader<'_> {
         Ok(s)
     }
     fn u64(&mut self) -> Result<u64> {
-        Ok(u64::from_le_bytes(self.take(8)?.try_into().expect("8 bytes")))
+        Ok(u64::from_le_bytes(
+            self.take(8)?.try_into().expect("8 bytes"),
+        ))
     }
     fn f64(&mut self) -> Result<f64> {
-        Ok(f64::from_le_bytes(self.take(8)?.try_into().expect("8 bytes")))
+        Ok(f64::from_le_bytes(
+            self.take(8)?.try_into().expect("8 bytes"),
+        ))
     }
 }
 
@@ -79,13 +96,22 @@ pub fn read_checkpoint(path: &Path, sim: &mut Simulation) -> Result<()> {
     std::fs::File::open(path)
         .and_then(|mut f| f.read_to_end(&mut bytes))
         .map_err(|e| DcfmError::io(&file, e))?;
-    let mut r = Reader { bytes: &bytes, pos: 0, file: file.clone() };
+    let mut r = Reader {
+        bytes: &bytes,
+        pos: 0,
+        file: file.clone(),
+    };
     let mismatch = |what: &str, found: u64, expected: usize| DcfmError::Parse {
         file: file.clone(),
-        message: format!("checkpoint has {found} {what}, the case has {expected}: it belongs to another case"),
+        message: format!(
+            "checkpoint has {found} {what}, the case has {expected}: it belongs to another case"
+        ),
     };
     if r.take(8)? != MAGIC {
-        return Err(DcfmError::Parse { file, message: "not a dcfm checkpoint (bad magic)".into() });
+        return Err(DcfmError::Parse {
+            file,
+            message: "not a dcfm checkpoint (bad magic)".into(),
+        });
     }
     let n = r.u64()?;
     if n as usize != sim.u.len() {
@@ -101,7 +127,10 @@ pub fn read_checkpoint(path: &Path, sim: &mut Simulation) -> Result<()> {
     if (dt - sim.dt).abs() > 1e-15 * sim.dt {
         return Err(DcfmError::Parse {
             file,
-            message: format!("checkpoint time step {dt:e} s differs from the case's {:e} s", sim.dt),
+            message: format!(
+                "checkpoint time step {dt:e} s differs from the case's {:e} s",
+                sim.dt
+            ),
         });
     }
     let e: Vec<f64> = (0..12).map(|_| r.f64()).collect::<Result<_>>()?;
@@ -115,7 +144,11 @@ pub fn read_checkpoint(path: &Path, sim: &mut Simulation) -> Result<()> {
     for g in sim.model.groups.iter_mut() {
         let len = r.u64()?;
         if len as usize != g.states.current().len() {
-            return Err(mismatch("state values in a group", len, g.states.current().len()));
+            return Err(mismatch(
+                "state values in a group",
+                len,
+                g.states.current().len(),
+            ));
         }
         let values: Vec<f64> = (0..len).map(|_| r.f64()).collect::<Result<_>>()?;
         g.states.restore(&values);

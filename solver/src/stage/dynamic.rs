@@ -22,7 +22,7 @@ use rayon::prelude::*;
 use crate::element::groups::ForceSettings;
 use crate::error::{DcfmError, Result};
 use crate::model::Model;
-use crate::stage::energy::{EnergyParts, Energies};
+use crate::stage::energy::{Energies, EnergyParts};
 
 /// Nodes per chunk of the node loops: fixed, so that reductions are summed in the same
 /// order whatever the number of threads.
@@ -77,7 +77,12 @@ impl Simulation {
     pub fn new(model: Model, dt: f64, safety: f64) -> Result<Self> {
         let stable = safety * model.critical_step_with_damping();
         if !(dt.is_finite() && dt > 0.0) {
-            return Err(DcfmError::invalid("", "time.dt", dt, "must be finite and > 0"));
+            return Err(DcfmError::invalid(
+                "",
+                "time.dt",
+                dt,
+                "must be finite and > 0",
+            ));
         }
         if dt > stable * (1.0 + 1e-12) {
             return Err(DcfmError::TimeStepTooLarge {
@@ -114,7 +119,11 @@ impl Simulation {
                 }
             }
         }
-        let mut loaded_nodes: Vec<u32> = model.nodal_loads.iter().flat_map(|l| l.nodes.iter().copied()).collect();
+        let mut loaded_nodes: Vec<u32> = model
+            .nodal_loads
+            .iter()
+            .flat_map(|l| l.nodes.iter().copied())
+            .collect();
         loaded_nodes.sort_unstable();
         loaded_nodes.dedup();
         let kinetic = kinetic_energy(&v, &model.mass);
@@ -168,14 +177,27 @@ impl Simulation {
     /// are written to their pending buffer, not committed.
     pub fn internal_forces(&mut self) {
         let beta = self.model.damping.beta;
-        self.f_int.par_iter_mut().with_min_len(4096).for_each(|f| *f = [0.0; 3]);
+        self.f_int
+            .par_iter_mut()
+            .with_min_len(4096)
+            .for_each(|f| *f = [0.0; 3]);
         if beta > 0.0 {
-            self.f_damp.par_iter_mut().with_min_len(4096).for_each(|f| *f = [0.0; 3]);
+            self.f_damp
+                .par_iter_mut()
+                .with_min_len(4096)
+                .for_each(|f| *f = [0.0; 3]);
         }
         let settings = ForceSettings { beta, dt: self.dt };
         for c in 0..self.model.n_colours {
             for g in self.model.groups.iter_mut() {
-                g.add_colour_forces(c, &self.u, &self.v, settings, &mut self.f_int, &mut self.f_damp);
+                g.add_colour_forces(
+                    c,
+                    &self.u,
+                    &self.v,
+                    settings,
+                    &mut self.f_int,
+                    &mut self.f_damp,
+                );
             }
         }
     }
@@ -305,9 +327,16 @@ impl Simulation {
         if let Some((node, true, _)) = worst {
             return Err(self.instability(node as usize, "non-finite displacement or velocity"));
         }
-        if self.step > 20 && e.scale() > 0.0 && e.relative_residual() > 0.5 && e.kinetic > 0.5 * e.scale() {
+        if self.step > 20
+            && e.scale() > 0.0
+            && e.relative_residual() > 0.5
+            && e.kinetic > 0.5 * e.scale()
+        {
             let node = worst.map_or(0, |w| w.0 as usize);
-            return Err(self.instability(node, "energy balance lost (kinetic energy growing without input)"));
+            return Err(self.instability(
+                node,
+                "energy balance lost (kinetic energy growing without input)",
+            ));
         }
         // Commit.
         for (ai, (vn, vo)) in self.a.iter_mut().zip(self.v_next.iter().zip(&self.v)) {
@@ -357,7 +386,11 @@ impl Simulation {
 
     /// Exact elastic strain energy of the current displacements (linear elastic groups).
     pub fn elastic_strain_energy(&self) -> f64 {
-        self.model.groups.iter().map(|g| g.elastic_strain_energy(&self.u)).sum()
+        self.model
+            .groups
+            .iter()
+            .map(|g| g.elastic_strain_energy(&self.u))
+            .sum()
     }
 
     /// Full-step velocity estimate at tⁿ for output: the last half-step velocity V^{n−½}.
@@ -411,7 +444,11 @@ impl NodeContext<'_> {
     #[inline(always)]
     fn applied_force(&self, i: usize, d: usize, r: &[f64; 3]) -> f64 {
         let m = self.mass[i];
-        self.f_ext[i][d] + m * self.gravity[d] - self.f_int[i][d] - self.f_damp[i][d] - self.alpha * m * self.v[i][d] + r[d]
+        self.f_ext[i][d] + m * self.gravity[d]
+            - self.f_int[i][d]
+            - self.f_damp[i][d]
+            - self.alpha * m * self.v[i][d]
+            + r[d]
     }
 
     /// Predictor of node i (eq. 4): V̄^{n+½} and Ū^{n+1}, constraints imposed.

@@ -2,8 +2,8 @@
 
 pub mod checkpoint;
 pub mod dynamic;
-pub mod run;
 pub mod energy;
+pub mod run;
 
 pub use dynamic::Simulation;
 pub use energy::Energies;

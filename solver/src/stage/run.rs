@@ -86,7 +86,16 @@ fn history_header(output: &OutputSection) -> Vec<String> {
 fn history_row(sim: &Simulation, output: &OutputSection, row: &mut Vec<f64>) {
     row.clear();
     let e = &sim.energies;
-    row.extend([sim.time, e.kinetic, e.internal, e.damping, e.contact, e.external, e.input, e.residual()]);
+    row.extend([
+        sim.time,
+        e.kinetic,
+        e.internal,
+        e.damping,
+        e.contact,
+        e.external,
+        e.input,
+        e.residual(),
+    ]);
     for &n in &output.nodes {
         let n = n as usize;
         row.extend(sim.u[n]);
@@ -126,15 +135,43 @@ fn write_state_vtu(sim: &Simulation, out: &Path, pvd: &mut PvdCollection) -> Res
         &model.mesh.coords,
         &model.mesh.elements,
         &[
-            VtuField { name: "displacement", components: 3, values: &u },
-            VtuField { name: "velocity", components: 3, values: &v },
-            VtuField { name: "acceleration", components: 3, values: &a },
+            VtuField {
+                name: "displacement",
+                components: 3,
+                values: &u,
+            },
+            VtuField {
+                name: "velocity",
+                components: 3,
+                values: &v,
+            },
+            VtuField {
+                name: "acceleration",
+                components: 3,
+                values: &a,
+            },
         ],
         &[
-            VtuField { name: "stress", components: 6, values: &stress },
-            VtuField { name: "strain", components: 6, values: &strain },
-            VtuField { name: "damage", components: 1, values: &damage },
-            VtuField { name: "region", components: 1, values: &region },
+            VtuField {
+                name: "stress",
+                components: 6,
+                values: &stress,
+            },
+            VtuField {
+                name: "strain",
+                components: 6,
+                values: &strain,
+            },
+            VtuField {
+                name: "damage",
+                components: 1,
+                values: &damage,
+            },
+            VtuField {
+                name: "region",
+                components: 1,
+                values: &region,
+            },
         ],
     )?;
     pvd.add(sim.time, &name)
@@ -163,7 +200,10 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
     let (mut pvd, mut hist) = if resumed_from.is_some() {
         let mut p = PvdCollection::resume(&pvd_path)?;
         p.truncate_after(sim.time)?;
-        (p, HistoryWriter::open_append_after(&hist_path, &header, sim.time)?)
+        (
+            p,
+            HistoryWriter::open_append_after(&hist_path, &header, sim.time)?,
+        )
     } else {
         let mut h = HistoryWriter::create(&hist_path, &header)?;
         let mut row = Vec::new();
@@ -191,9 +231,8 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
     let start_step = sim.step;
     let t0 = Instant::now();
     while sim.step < total_steps {
-        sim.step().map_err(|e| {
+        sim.step().inspect_err(|_| {
             let _ = hist.flush();
-            e
         })?;
         if sim.step % output.history_every == 0 || sim.step == total_steps {
             history_row(&sim, &output, &mut row);
@@ -201,10 +240,18 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
             for (i, (u, v)) in sim.u.iter().zip(&sim.v).enumerate() {
                 let (nu, nv) = (norm(u), norm(v));
                 if nu > peak_u.value {
-                    peak_u = Peak { value: nu, node: i, time: sim.time };
+                    peak_u = Peak {
+                        value: nu,
+                        node: i,
+                        time: sim.time,
+                    };
                 }
                 if nv > peak_v.value {
-                    peak_v = Peak { value: nv, node: i, time: sim.time };
+                    peak_v = Peak {
+                        value: nv,
+                        node: i,
+                        time: sim.time,
+                    };
                 }
             }
         }
@@ -219,7 +266,10 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
             let el = t0.elapsed().as_secs_f64().max(1e-9);
             let rate = (sim.step - start_step) as f64 * n_elements as f64 / el;
             bar.set_position(sim.step);
-            bar.set_message(format!("t = {:.4e} s, {:.3e} element-updates/s", sim.time, rate));
+            bar.set_message(format!(
+                "t = {:.4e} s, {:.3e} element-updates/s",
+                sim.time, rate
+            ));
         }
     }
     bar.finish_and_clear();

@@ -24,12 +24,23 @@ pub struct HalfSinePulse1D {
 impl HalfSinePulse1D {
     /// Validated constructor: all parameters finite and > 0.
     pub fn new(v0: f64, period: f64, speed: f64, density: f64) -> Result<Self, String> {
-        for (n, x) in [("v0", v0), ("period", period), ("speed", speed), ("density", density)] {
+        for (n, x) in [
+            ("v0", v0),
+            ("period", period),
+            ("speed", speed),
+            ("density", density),
+        ] {
             if !(x.is_finite() && x > 0.0) {
                 return Err(format!("{n} = {x}: must be finite and > 0"));
             }
         }
-        Ok(Self { v0, period, speed, density, shape: PulseShape::HalfSine })
+        Ok(Self {
+            v0,
+            period,
+            speed,
+            density,
+            shape: PulseShape::HalfSine,
+        })
     }
 
     /// The same pulse with another shape.
@@ -57,7 +68,9 @@ impl HalfSinePulse1D {
         use std::f64::consts::PI;
         let s = (t - z / self.speed).clamp(0.0, self.period);
         match self.shape {
-            PulseShape::HalfSine => self.v0 * self.period / PI * (1.0 - (PI * s / self.period).cos()),
+            PulseShape::HalfSine => {
+                self.v0 * self.period / PI * (1.0 - (PI * s / self.period).cos())
+            }
             PulseShape::SineSquared => {
                 self.v0 * (0.5 * s - self.period / (4.0 * PI) * (2.0 * PI * s / self.period).sin())
             }

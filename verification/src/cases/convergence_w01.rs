@@ -50,6 +50,12 @@ pub fn fitted_slope(table: &[(f64, f64)]) -> f64 {
 pub fn run() -> Result<Vec<CheckRow>> {
     let t = table(PulseShape::SineSquared)?;
     let mut check = Check::new("W1 convergence (P sin² pulse, Courant 0.5)");
-    check.absolute("fitted slope of RMS displacement error vs h", 2.0, fitted_slope(&t), 0.25, "VERIFICATION.md W1");
+    check.absolute(
+        "fitted slope of RMS displacement error vs h",
+        2.0,
+        fitted_slope(&t),
+        0.25,
+        "VERIFICATION.md W1",
+    );
     Ok(check.finish())
 }

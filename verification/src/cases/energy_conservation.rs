@@ -82,7 +82,10 @@ pub fn measure(integration: Integration, steps: usize) -> Result<([f64; 2], [f64
 /// Run for both integrations.
 pub fn run() -> Result<Vec<CheckRow>> {
     let mut check = Check::new("Energy conservation, undamped free vibration");
-    for (name, integ) in [("one-point", Integration::OnePoint), ("full", Integration::Full)] {
+    for (name, integ) in [
+        ("one-point", Integration::OnePoint),
+        ("full", Integration::Full),
+    ] {
         let (scheme, midpoint) = measure(integ, 10_000)?;
         check.relative(
             &format!("{name}: mean scheme energy, last vs first 1000 of 10⁴ steps (J)"),

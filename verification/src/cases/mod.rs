@@ -20,10 +20,25 @@ pub struct Case {
 /// Every case the runner executes, in report order.
 pub fn all() -> Vec<Case> {
     vec![
-        Case { id: "W1", run: w01_wave_pulses::run },
-        Case { id: "W1-conv", run: convergence_w01::run },
-        Case { id: "patch", run: patch_test::run },
-        Case { id: "energy", run: energy_conservation::run },
-        Case { id: "W13", run: w13_stable_step::run },
+        Case {
+            id: "W1",
+            run: w01_wave_pulses::run,
+        },
+        Case {
+            id: "W1-conv",
+            run: convergence_w01::run,
+        },
+        Case {
+            id: "patch",
+            run: patch_test::run,
+        },
+        Case {
+            id: "energy",
+            run: energy_conservation::run,
+        },
+        Case {
+            id: "W13",
+            run: w13_stable_step::run,
+        },
     ]
 }

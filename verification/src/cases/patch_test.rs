@@ -50,7 +50,11 @@ pub fn measure(integration: Integration) -> Result<(f64, f64)> {
     let model = Model::new(mesh, &[setup], "patch")?;
     let dt = 0.5 * model.stable.critical;
     let mut sim = Simulation::new(model, dt, 0.9)?;
-    let g = [[1e-4, 2e-5, -3e-5], [4e-5, -2e-4, 1e-5], [-1e-5, 3e-5, 5e-5]];
+    let g = [
+        [1e-4, 2e-5, -3e-5],
+        [4e-5, -2e-4, 1e-5],
+        [-1e-5, 3e-5, 5e-5],
+    ];
     let a = [1e-3, -2e-3, 5e-4];
     for (i, x) in sim.model.mesh.coords.clone().iter().enumerate() {
         for r in 0..3 {
@@ -92,11 +96,26 @@ pub fn measure(integration: Integration) -> Result<(f64, f64)> {
 /// Run the patch test for both integration rules.
 pub fn run() -> Result<Vec<CheckRow>> {
     let mut check = Check::new("Patch test (constant strain)");
-    for (name, integ) in [("one-point + hourglass", Integration::OnePoint), ("full 2×2×2", Integration::Full)] {
+    for (name, integ) in [
+        ("one-point + hourglass", Integration::OnePoint),
+        ("full 2×2×2", Integration::Full),
+    ] {
         let (s, f) = measure(integ)?;
         check
-            .absolute(&format!("{name}: max stress error / max stress"), 0.0, s, 1e-10, SOURCE)
-            .absolute(&format!("{name}: interior-node force / max nodal force"), 0.0, f, 1e-10, SOURCE);
+            .absolute(
+                &format!("{name}: max stress error / max stress"),
+                0.0,
+                s,
+                1e-10,
+                SOURCE,
+            )
+            .absolute(
+                &format!("{name}: interior-node force / max nodal force"),
+                0.0,
+                f,
+                1e-10,
+                SOURCE,
+            );
     }
     Ok(check.finish())
 }

@@ -112,10 +112,17 @@ pub fn run() -> Result<Vec<CheckRow>> {
         let name = if wave == Wave::P { "P" } else { "S" };
         let free = ColumnSetup::w1(wave, TopEnd::Free);
         let c = free.speed();
-        let pulse = HalfSinePulse1D::new(free.v0, free.period, c, free.density).expect("valid pulse");
+        let pulse =
+            HalfSinePulse1D::new(free.v0, free.period, c, free.density).expect("valid pulse");
         let mf = measure(&free)?;
         check
-            .relative(&format!("{name}: incident stress ρcv0 (Pa)"), pulse.peak_stress(), mf.mid_peak_stress, 0.03, SOURCE)
+            .relative(
+                &format!("{name}: incident stress ρcv0 (Pa)"),
+                pulse.peak_stress(),
+                mf.mid_peak_stress,
+                0.03,
+                SOURCE,
+            )
             .absolute(
                 &format!("{name}: arrival of the peak at z = {:.1} m (s)", mf.mid_z),
                 mf.mid_z / c + 0.5 * free.period,
@@ -123,8 +130,20 @@ pub fn run() -> Result<Vec<CheckRow>> {
                 2.0 * mf.dt,
                 SOURCE,
             )
-            .relative(&format!("{name}: net displacement 2v0T/π (m)"), pulse.net_displacement(), mf.mid_net_displacement, 0.01, SOURCE)
-            .absolute(&format!("{name}: free-end velocity / v0"), 2.0, mf.top_peak_velocity / free.v0, 0.06, SOURCE)
+            .relative(
+                &format!("{name}: net displacement 2v0T/π (m)"),
+                pulse.net_displacement(),
+                mf.mid_net_displacement,
+                0.01,
+                SOURCE,
+            )
+            .absolute(
+                &format!("{name}: free-end velocity / v0"),
+                2.0,
+                mf.top_peak_velocity / free.v0,
+                0.06,
+                SOURCE,
+            )
             .relative(
                 &format!("{name}: free-end displacement after reflection (m)"),
                 2.0 * pulse.net_displacement(),
@@ -134,7 +153,13 @@ pub fn run() -> Result<Vec<CheckRow>> {
             );
         let fixed = ColumnSetup::w1(wave, TopEnd::Fixed);
         let mx = measure(&fixed)?;
-        check.relative(&format!("{name}: fixed-end stress 2ρcv0 (Pa)"), 2.0 * pulse.peak_stress(), mx.top_peak_stress, 0.03, SOURCE);
+        check.relative(
+            &format!("{name}: fixed-end stress 2ρcv0 (Pa)"),
+            2.0 * pulse.peak_stress(),
+            mx.top_peak_stress,
+            0.03,
+            SOURCE,
+        );
         for (end, m) in [("free", &mf), ("fixed", &mx)] {
             check.absolute(
                 &format!("{name}, {end} top: max |energy residual| / largest energy"),

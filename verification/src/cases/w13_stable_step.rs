@@ -39,7 +39,10 @@ pub fn single_element_bound() -> f64 {
     let x = NODE_XI.map(|p| p.map(|c| 0.5 * h * (c + 1.0)));
     let geo = FullGeometry::new(&x).expect("cube");
     let m = element_masses(&x, el.density);
-    let ctx = PointContext { char_length: h, dt: 0.0 };
+    let ctx = PointContext {
+        char_length: h,
+        dt: 0.0,
+    };
     let mut k = DMatrix::<f64>::zeros(24, 24);
     for col in 0..24 {
         let mut u = [[0.0; 3]; 8];
@@ -80,7 +83,9 @@ pub fn uniform_mesh_run(integration: Integration, courant: f64, steps: usize) ->
             continue;
         }
         for c in v.iter_mut() {
-            seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
             *c = ((seed >> 11) as f64 / (1u64 << 53) as f64) - 0.5;
         }
     }
@@ -98,15 +103,39 @@ pub fn uniform_mesh_run(integration: Integration, courant: f64, steps: usize) ->
 /// Run W13.
 pub fn run() -> Result<Vec<CheckRow>> {
     let mut check = Check::new("W13 stable time step");
-    check.relative("single free cube: 2/ω_max · c_p/h", 0.775, single_element_bound(), 0.01, SOURCE);
+    check.relative(
+        "single free cube: 2/ω_max · c_p/h",
+        0.775,
+        single_element_bound(),
+        0.01,
+        SOURCE,
+    );
     let stable = uniform_mesh_run(Integration::OnePoint, 0.99, 3000)?;
-    check.within("one-point mesh at 0.99 h/c_p: max/initial kinetic energy (bounded)", 0.0, 2.0, stable, SOURCE);
+    check.within(
+        "one-point mesh at 0.99 h/c_p: max/initial kinetic energy (bounded)",
+        0.0,
+        2.0,
+        stable,
+        SOURCE,
+    );
     let caught = match uniform_mesh_run(Integration::OnePoint, 1.25, 3000) {
         Err(DcfmError::Unstable { .. }) => 1.0,
         _ => 0.0,
     };
-    check.absolute("one-point mesh at 1.25 h/c_p: instability detected (1 = yes)", 1.0, caught, 0.0, SOURCE);
+    check.absolute(
+        "one-point mesh at 1.25 h/c_p: instability detected (1 = yes)",
+        1.0,
+        caught,
+        0.0,
+        SOURCE,
+    );
     let full = uniform_mesh_run(Integration::Full, 0.9, 3000)?;
-    check.within("full-integration mesh at 0.9 h/c_p (default): max/initial kinetic energy", 0.0, 2.0, full, SOURCE);
+    check.within(
+        "full-integration mesh at 0.9 h/c_p (default): max/initial kinetic energy",
+        0.0,
+        2.0,
+        full,
+        SOURCE,
+    );
     Ok(check.finish())
 }

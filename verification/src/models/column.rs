@@ -86,7 +86,8 @@ impl ColumnSetup {
     pub fn build(&self) -> Result<Simulation> {
         let n = (self.height / self.element_size).round() as usize;
         let h = self.element_size;
-        let mesh = BoxMeshSpec::single("col", [0.0; 3], [h, h, self.height], [1, 1, n]).build("column")?;
+        let mesh =
+            BoxMeshSpec::single("col", [0.0; 3], [h, h, self.height], [1, 1, n]).build("column")?;
         let elastic = Elastic::new("rock", self.young, self.poisson, self.density)?;
         let setup = RegionSetup {
             region: "col".into(),
@@ -113,10 +114,16 @@ impl ColumnSetup {
                 dof,
                 kind: MotionKind::Velocity,
                 history: match self.shape {
-                    PulseShape::HalfSine => TimeFunction::HalfSine { amplitude: self.v0, period: self.period, start: 0.0 },
-                    PulseShape::SineSquared => {
-                        TimeFunction::SineSquared { amplitude: self.v0, period: self.period, start: 0.0 }
-                    }
+                    PulseShape::HalfSine => TimeFunction::HalfSine {
+                        amplitude: self.v0,
+                        period: self.period,
+                        start: 0.0,
+                    },
+                    PulseShape::SineSquared => TimeFunction::SineSquared {
+                        amplitude: self.v0,
+                        period: self.period,
+                        start: 0.0,
+                    },
                 },
             })
             .map_err(|n| dcfm::DcfmError::Mesh(format!("node {n} constrained twice")))?;

@@ -8,6 +8,8 @@
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+use std::io::Write;
+
 use clap::{Parser, Subcommand};
 
 use dcfm::case::load_case;
@@ -50,21 +52,35 @@ enum Command {
     },
 }
 
+/// Print a line to stdout, ignoring a closed pipe (`dcfm check x | head` must not panic).
+macro_rules! say {
+    ($($arg:tt)*) => {{
+        let _ = writeln!(std::io::stdout(), $($arg)*);
+    }};
+}
+
+/// Print a line to stderr, ignoring a closed pipe.
+macro_rules! esay {
+    ($($arg:tt)*) => {{
+        let _ = writeln!(std::io::stderr(), $($arg)*);
+    }};
+}
+
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
         Command::Check { case } => match load_case(&case) {
             Ok(c) => {
                 let m = &c.model;
-                println!("case      {} ({})", case.display(), c.title);
-                println!(
+                say!("case      {} ({})", case.display(), c.title);
+                say!(
                     "mesh      {} nodes, {} hex8 elements, {} colours",
                     m.mesh.n_nodes(),
                     m.n_elements(),
                     m.n_colours
                 );
                 for g in &m.groups {
-                    println!(
+                    say!(
                         "region    {:<16} {:>8} elements  {:<9} {}  E = {:.3e} Pa  ν = {}  ρ = {} kg/m³",
                         g.name,
                         g.len(),
@@ -78,7 +94,7 @@ fn main() -> ExitCode {
                         g.material.density()
                     );
                 }
-                println!(
+                say!(
                     "stable    critical Δt = {:.4e} s (element {}, L = {:.4e} m, c_p = {:.1} m/s); with damping {:.4e} s",
                     m.stable.critical,
                     m.stable.element,
@@ -86,18 +102,18 @@ fn main() -> ExitCode {
                     m.stable.speed,
                     m.critical_step_with_damping()
                 );
-                println!(
+                say!(
                     "time      Δt = {:.4e} s (safety {}), end {} s → {} steps",
                     c.dt,
                     c.safety,
                     c.end,
                     (c.end / c.dt).ceil()
                 );
-                println!("memory    {:.0} bytes per element", m.bytes_per_element());
+                say!("memory    {:.0} bytes per element", m.bytes_per_element());
                 ExitCode::SUCCESS
             }
             Err(e) => {
-                eprintln!("error: {e}");
+                esay!("error: {e}");
                 ExitCode::from(2)
             }
         },
@@ -110,14 +126,14 @@ fn main() -> ExitCode {
         } => {
             if let Some(n) = threads {
                 if n == 0 {
-                    eprintln!("error: --threads 0: expected at least 1");
+                    esay!("error: --threads 0: expected at least 1");
                     return ExitCode::from(2);
                 }
                 if let Err(e) = rayon::ThreadPoolBuilder::new()
                     .num_threads(n)
                     .build_global()
                 {
-                    eprintln!("error: --threads {n}: {e}");
+                    esay!("error: --threads {n}: {e}");
                     return ExitCode::from(2);
                 }
             }
@@ -131,7 +147,7 @@ fn main() -> ExitCode {
             let loaded = match load_case(&case) {
                 Ok(c) => c,
                 Err(e) => {
-                    eprintln!("error: {e}");
+                    esay!("error: {e}");
                     return ExitCode::from(2);
                 }
             };
@@ -142,7 +158,7 @@ fn main() -> ExitCode {
             };
             match run_case(loaded, &opts) {
                 Ok(s) => {
-                    println!(
+                    say!(
                         "{}: {} steps of {:.4e} s to t = {:.4e} s in {:.2} s ({:.3e} element-updates/s); energy residual {:.2e} of the largest energy; outputs in {}",
                         case.display(),
                         s.steps,
@@ -156,7 +172,7 @@ fn main() -> ExitCode {
                     ExitCode::SUCCESS
                 }
                 Err(e) => {
-                    eprintln!("error: {e}");
+                    esay!("error: {e}");
                     ExitCode::from(1)
                 }
             }

@@ -1,0 +1,120 @@
+//! Yield function of the effective stress, eq. (25) (Lee & Fenves 1998; Omidi & Lotfi 2010):
+//!
+//! F = [α Ī₁ + √(3 J̄₂) + β ⟨σ̂_max⟩ − γ ⟨−σ̂_max⟩]/(1 − α) − c̄_c(κ_c),
+//! β = (1 − α) c̄_c(κ_c)/c̄_t(κ_t) − (1 + α),
+//!
+//! written on the principal effective stresses σ̂₁ ≥ σ̂₂ ≥ σ̂₃.
+
+/// Smallest effective tensile cohesion used in β (Pa), guards the division when the
+/// effective tensile strength has softened to nothing.
+const MIN_COHESION: f64 = 1e-6;
+
+/// Constants of eq. (25).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct YieldSurface {
+    /// α = (f_b0/f_c0 − 1)/(2 f_b0/f_c0 − 1).
+    pub alpha: f64,
+    /// γ = 3(1 − K_c)/(2K_c − 1).
+    pub gamma: f64,
+}
+
+impl YieldSurface {
+    /// β of eq. (25) from the effective cohesions c̄_t, c̄_c (Pa).
+    #[inline]
+    pub fn beta(&self, ct: f64, cc: f64) -> f64 {
+        (1.0 - self.alpha) * cc / ct.max(MIN_COHESION) - (1.0 + self.alpha)
+    }
+
+    /// F of eq. (25) for sorted principal effective stresses `s` (σ̂₁ ≥ σ̂₂ ≥ σ̂₃), Pa.
+    #[inline]
+    pub fn value(&self, s: &[f64; 3], ct: f64, cc: f64) -> f64 {
+        let i1 = s[0] + s[1] + s[2];
+        let q = von_mises(s);
+        let smax = s[0];
+        let bracket =
+            self.alpha * i1 + q + self.beta(ct, cc) * smax.max(0.0) - self.gamma * (-smax).max(0.0);
+        bracket / (1.0 - self.alpha) - cc
+    }
+}
+
+/// √(3 J₂) of principal stresses.
+#[inline]
+pub fn von_mises(s: &[f64; 3]) -> f64 {
+    let m = (s[0] + s[1] + s[2]) / 3.0;
+    let (a, b, c) = (s[0] - m, s[1] - m, s[2] - m);
+    (1.5 * (a * a + b * b + c * c)).sqrt()
+}
+
+/// Lee–Fenves (1998) weight of the tensile principal effective stresses,
+/// r = Σ⟨σ̂ᵢ⟩/Σ|σ̂ᵢ| (0 for a zero stress): 1 in pure tension, 0 in pure compression.
+#[inline]
+pub fn tension_weight(s: &[f64; 3]) -> f64 {
+    let den = s[0].abs() + s[1].abs() + s[2].abs();
+    if den > 0.0 {
+        (s[0].max(0.0) + s[1].max(0.0) + s[2].max(0.0)) / den
+    } else {
+        0.0
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn surface(fb: f64, kc: f64) -> YieldSurface {
+        YieldSurface {
+            alpha: (fb - 1.0) / (2.0 * fb - 1.0),
+            gamma: 3.0 * (1.0 - kc) / (2.0 * kc - 1.0),
+        }
+    }
+
+    #[test]
+    fn reproduces_uniaxial_and_equibiaxial_strengths() {
+        let y = surface(1.16, 2.0 / 3.0);
+        let (ft, fc) = (2.9e6, 13e6);
+        assert!(y.value(&[ft, 0.0, 0.0], ft, fc).abs() < 1e-6);
+        assert!(y.value(&[0.0, 0.0, -fc], ft, fc).abs() < 1e-6);
+        // Kupfer: equibiaxial initial yield 1.16 f_c0.
+        let fb = 1.16 * fc;
+        assert!(y.value(&[0.0, -fb, -fb], ft, fc).abs() < 1e-6);
+    }
+
+    #[test]
+    fn kc_is_the_ratio_of_the_meridians() {
+        // On the tensile and the compressive meridian
+        // at the same negative pressure and σ̂max < 0, q_TM/q_CM = K_c.
+        let kc = 0.7;
+        let y = surface(1.16, kc);
+        let (ft, fc) = (2.9e6, 13e6);
+        let p = -30e6;
+        // Solve F = 0 along each meridian by bisection on q.
+        let solve = |tm: bool| {
+            let (mut lo, mut hi) = (0.0, 1e9);
+            for _ in 0..200 {
+                let q = 0.5 * (lo + hi);
+                // Tensile meridian σ̂1 > σ̂2 = σ̂3, compressive meridian σ̂1 = σ̂2 > σ̂3.
+                let s = if tm {
+                    [p + 2.0 * q / 3.0, p - q / 3.0, p - q / 3.0]
+                } else {
+                    [p + q / 3.0, p + q / 3.0, p - 2.0 * q / 3.0]
+                };
+                if y.value(&s, ft, fc) > 0.0 {
+                    hi = q
+                } else {
+                    lo = q
+                }
+            }
+            0.5 * (lo + hi)
+        };
+        let ratio = solve(true) / solve(false);
+        assert!((ratio - kc).abs() < 1e-9, "{ratio}");
+    }
+
+    #[test]
+    fn weight_factor_limits() {
+        assert_eq!(tension_weight(&[1.0, 0.5, 0.0]), 1.0);
+        assert_eq!(tension_weight(&[0.0, -0.5, -1.0]), 0.0);
+        assert_eq!(tension_weight(&[1.0, 0.0, -1.0]), 0.5);
+        assert_eq!(tension_weight(&[0.0, 0.0, 0.0]), 0.0);
+    }
+}

@@ -46,6 +46,9 @@ impl SofteningLaw {
     /// Effective strength f̄ = f/(1 − D) at y (Pa): the cohesion c̄ of the yield function.
     #[inline]
     pub fn effective(&self, y: f64) -> f64 {
+        if y == 0.0 {
+            return self.f0;
+        }
         let r = self.r;
         self.f0 * ((1.0 + self.a) * (-(1.0 - r) * y).exp() - self.a * (-(2.0 - r) * y).exp())
     }
@@ -53,6 +56,9 @@ impl SofteningLaw {
     /// Degradation D = 1 − e^(−d ε̃ᵖ) = 1 − e^(−r y) (paper eq. 24).
     #[inline]
     pub fn damage(&self, y: f64) -> f64 {
+        if y == 0.0 {
+            return 0.0;
+        }
         1.0 - (-self.r * y).exp()
     }
 

@@ -34,7 +34,7 @@ use crate::material::{Elastic, PointContext, Voigt};
 use potential::Potential;
 use principal::{principal_values, Spectral};
 use return_mapping::LocalProblem;
-use yield_surface::{tension_weight, YieldSurface};
+use yield_surface::{invariants, tension_weight, YieldSurface};
 
 /// Layout of the per-point state.
 mod slot {
@@ -164,8 +164,15 @@ impl PlasticDamage {
     /// not converge.
     fn return_map(&self, pb: &LocalProblem, eps: &Voigt, st: &Internal) -> (Internal, bool) {
         let trial = self.elastic.stress(&sub(eps, &st.plastic));
-        let f = pb.yield_value(&principal_values(&trial), st.y_t, st.y_c);
-        if f <= 0.0 {
+        // Cheap check on the invariants first; the eigenvalues only near the surface.
+        let (i1, q) = invariants(&trial);
+        let (ct, cc) = (
+            pb.tension.effective(st.y_t),
+            pb.compression.effective(st.y_c),
+        );
+        if self.surface.surely_inside(i1, q, ct, cc)
+            || pb.yield_value(&principal_values(&trial), st.y_t, st.y_c) <= 0.0
+        {
             return (*st, true);
         }
         let sp = Spectral::of(&trial);
@@ -273,9 +280,14 @@ impl PlasticDamage {
         new[slot::Y_T] = st.y_t;
         new[slot::Y_C] = st.y_c;
         new[slot::DAMAGE] = d;
-        new[slot::DISSIPATED] = old[slot::DISSIPATED]
-            + t.g(l) * (t.kappa(st.y_t) - t.kappa(start.y_t))
-            + c.g(l) * (c.kappa(st.y_c) - c.kappa(start.y_c));
+        let mut w = old[slot::DISSIPATED];
+        if st.y_t != start.y_t {
+            w += t.g(l) * (t.kappa(st.y_t) - t.kappa(start.y_t));
+        }
+        if st.y_c != start.y_c {
+            w += c.g(l) * (c.kappa(st.y_c) - c.kappa(start.y_c));
+        }
+        new[slot::DISSIPATED] = w;
         scale(&eff, 1.0 - d)
     }
 
@@ -288,7 +300,17 @@ impl PlasticDamage {
             return dc;
         }
         let s0 = self.constants.s0;
-        let s = s0 + (1.0 - s0) * tension_weight(&principal_values(eff));
+        // r = 1 (0) when even the smallest (largest) principal stress bound, Ī₁/3 ∓ (2/3)q,
+        // is ≥ 0 (≤ 0); otherwise from the eigenvalues.
+        let (i1, q) = invariants(eff);
+        let r = if i1 / 3.0 - 2.0 * q / 3.0 >= 0.0 {
+            1.0
+        } else if i1 / 3.0 + 2.0 * q / 3.0 <= 0.0 {
+            0.0
+        } else {
+            tension_weight(&principal_values(eff))
+        };
+        let s = s0 + (1.0 - s0) * r;
         1.0 - (1.0 - dc) * (1.0 - s * dt)
     }
 

@@ -28,13 +28,33 @@ impl YieldSurface {
     /// F of eq. (25) for sorted principal effective stresses `s` (σ̂₁ ≥ σ̂₂ ≥ σ̂₃), Pa.
     #[inline]
     pub fn value(&self, s: &[f64; 3], ct: f64, cc: f64) -> f64 {
-        let i1 = s[0] + s[1] + s[2];
-        let q = von_mises(s);
-        let smax = s[0];
+        self.value_from(s[0] + s[1] + s[2], von_mises(s), s[0], ct, cc)
+    }
+
+    /// F of eq. (25) from Ī₁, √(3J̄₂) and σ̂_max.
+    #[inline]
+    pub fn value_from(&self, i1: f64, q: f64, smax: f64, ct: f64, cc: f64) -> f64 {
         let bracket =
             self.alpha * i1 + q + self.beta(ct, cc) * smax.max(0.0) - self.gamma * (-smax).max(0.0);
         bracket / (1.0 - self.alpha) - cc
     }
+
+    /// Whether F ≤ 0 is certain from the invariants alone (no eigenvalues): when β ≥ 0, F
+    /// does not decrease with σ̂_max, and σ̂_max ≤ Ī₁/3 + (2/3)√(3J̄₂).
+    #[inline]
+    pub fn surely_inside(&self, i1: f64, q: f64, ct: f64, cc: f64) -> bool {
+        self.beta(ct, cc) >= 0.0 && self.value_from(i1, q, i1 / 3.0 + 2.0 * q / 3.0, ct, cc) <= 0.0
+    }
+}
+
+/// Ī₁ and √(3J̄₂) of a stress-like Voigt vector (tensor shear components).
+#[inline]
+pub fn invariants(s: &[f64; 6]) -> (f64, f64) {
+    let i1 = s[0] + s[1] + s[2];
+    let m = i1 / 3.0;
+    let (a, b, c) = (s[0] - m, s[1] - m, s[2] - m);
+    let ss = a * a + b * b + c * c + 2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]);
+    (i1, (1.5 * ss).sqrt())
 }
 
 /// √(3 J₂) of principal stresses.
@@ -108,6 +128,34 @@ mod tests {
         };
         let ratio = solve(true) / solve(false);
         assert!((ratio - kc).abs() < 1e-9, "{ratio}");
+    }
+
+    #[test]
+    fn invariant_bound_never_misses_a_yielding_stress() {
+        let y = surface(1.16, 2.0 / 3.0);
+        let (ft, fc) = (2.9e6, 13e6);
+        let mut seed = 12345u64;
+        let mut rnd = || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 3.0e7
+        };
+        let mut inside = 0;
+        for _ in 0..20000 {
+            let v = [rnd(), rnd(), rnd(), rnd() * 0.3, rnd() * 0.3, rnd() * 0.3];
+            let (i1, q) = invariants(&v);
+            let m = nalgebra::Matrix3::new(v[0], v[3], v[5], v[3], v[1], v[4], v[5], v[4], v[2]);
+            let mut e: Vec<f64> = m.symmetric_eigenvalues().iter().copied().collect();
+            e.sort_by(|a, b| b.total_cmp(a));
+            let f = y.value(&[e[0], e[1], e[2]], ft, fc);
+            assert!((von_mises(&[e[0], e[1], e[2]]) - q).abs() < 1e-6);
+            if y.surely_inside(i1, q, ft, fc) {
+                inside += 1;
+                assert!(f <= 0.0, "{v:?}");
+            }
+        }
+        assert!(inside > 100);
     }
 
     #[test]

@@ -1,7 +1,8 @@
 //! Properties of the Lee–Fenves plastic-damage model along random strain paths
 //! (DESIGN.md §5): 0 ≤ D ≤ 1; the damage variables D_t, D_c, κ_t, κ_c never decrease;
 //! F ≤ tol after the return mapping; dissipation ≥ 0 and never decreasing; an elastic path
-//! is exactly elastic; splitting a strain increment into more sub-steps converges.
+//! is exactly elastic; the total mechanical dissipation (work in minus recoverable energy)
+//! is never negative; splitting a strain increment into more sub-steps converges.
 //!
 //! D of eq. (24) itself may fall when a crack closes (stiffness recovery, s < 1), so the
 //! monotonicity is asserted on D_t, D_c and on the fully-open value 1 − (1 − D_c)(1 − D_t).
@@ -149,5 +150,39 @@ proptest! {
         prop_assert!(gap <= 0.01 * change + 1e-12, "gap {} change {}", gap, change);
         // And the one-step answer is already close to the converged one.
         prop_assert!(dist(&split(1), &s512) <= 0.5 * change + 1e-12);
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig { cases: 128, ..ProptestConfig::default() })]
+
+    #[test]
+    fn total_mechanical_dissipation_is_never_negative(
+        path in prop::collection::vec(increment(4e-4), 1..15),
+        l in 0.1f64..1.0,
+    ) {
+        // W = ∫σ : dε (trapezoid over 40 sub-steps per increment) minus the recoverable
+        // energy ½ σ : (ε − εᵖ) must stay ≥ 0 (second law, isothermal), up to the
+        // quadrature error, bounded here by 1e-6 of Σ|ΔW|.
+        let m = model();
+        let mut st = vec![0.0; m.state_len()];
+        m.init_state(&mut st);
+        let mut new = st.clone();
+        let (mut eps, mut sig) = ([0.0; 6], [0.0; 6]);
+        let (mut work, mut gross) = (0.0, 0.0);
+        for inc in &path {
+            for _ in 0..40 {
+                let e2: Voigt = std::array::from_fn(|i| eps[i] + inc[i] / 40.0);
+                let s = m.update(&e2, &st, &mut new, &ctx(l));
+                let dw: f64 = (0..6).map(|i| 0.5 * (s[i] + sig[i]) * (e2[i] - eps[i])).sum();
+                work += dw;
+                gross += dw.abs();
+                eps = e2;
+                sig = s;
+                st.copy_from_slice(&new);
+            }
+            let dissipated = work - m.recoverable_energy_density(&eps, &st);
+            prop_assert!(dissipated >= -1e-6 * gross - 1e-9, "dissipated {} of {}", dissipated, gross);
+        }
     }
 }

@@ -10,6 +10,32 @@
 use dcfm::material::plastic_damage::PlasticDamageParams;
 use dcfm::material::{Elastic, PlasticDamage, PointContext, Voigt};
 use proptest::prelude::*;
+use std::alloc::{GlobalAlloc, Layout, System};
+use std::cell::Cell;
+
+/// Counts heap allocations per thread, to check that `update` allocates nothing.
+struct Counting;
+
+thread_local! {
+    static ALLOCATIONS: Cell<usize> = const { Cell::new(0) };
+}
+
+unsafe impl GlobalAlloc for Counting {
+    unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+        let _ = ALLOCATIONS.try_with(|c| c.set(c.get() + 1));
+        System.alloc(layout)
+    }
+    unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+        System.dealloc(ptr, layout)
+    }
+}
+
+#[global_allocator]
+static GLOBAL: Counting = Counting;
+
+fn allocations() -> usize {
+    ALLOCATIONS.with(|c| c.get())
+}
 
 const FC0: f64 = 13e6;
 
@@ -185,4 +211,25 @@ proptest! {
             prop_assert!(dissipated >= -1e-6 * gross - 1e-9, "dissipated {} of {}", dissipated, gross);
         }
     }
+}
+
+#[test]
+fn update_does_not_allocate() {
+    let m = model();
+    let mut st = vec![0.0; m.state_len()];
+    let mut new = st.clone();
+    let path: [Voigt; 5] = [
+        [1e-5, 0.0, 0.0, 0.0, 0.0, 0.0],
+        [4e-4, -5e-5, 2e-5, 1e-4, -3e-5, 4e-5],
+        [-2e-3, 2e-4, 1e-4, 1e-4, 0.0, -5e-5],
+        [5e-2, 5e-2, 5e-2, 0.0, 0.0, 0.0],
+        [-5e-2, 1e-2, 0.0, 3e-2, 0.0, 0.0],
+    ];
+    let before = allocations();
+    for eps in &path {
+        m.update(eps, &st, &mut new, &ctx(0.5));
+        st.copy_from_slice(&new);
+    }
+    assert_eq!(allocations() - before, 0);
+    assert!(m.damage(&st) > 0.0);
 }

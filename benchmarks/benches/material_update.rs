@@ -1,0 +1,47 @@
+//! Material update per integration point: the Lee–Fenves plastic-damage model on its
+//! elastic branch (trial inside the yield surface) and on its plastic branch (return
+//! mapping in principal space), with linear elasticity as the baseline.
+
+use criterion::{black_box, criterion_group, criterion_main, Criterion};
+use dcfm::material::plastic_damage::PlasticDamageParams;
+use dcfm::material::{Elastic, PlasticDamage, PointContext};
+
+fn material_update(c: &mut Criterion) {
+    let el = Elastic::new("concrete", 31027e6, 0.18, 2400.0).unwrap();
+    let pd = PlasticDamage::new(
+        "concrete",
+        el,
+        &PlasticDamageParams::from_strengths(2.9e6, 13e6, 24.1e6, 200.0, 1.0e4),
+    )
+    .unwrap();
+    let ctx = PointContext {
+        char_length: 0.5,
+        dt: 1e-4,
+    };
+    let n = pd.state_len();
+    let old = vec![0.0; n];
+    let mut new = vec![0.0; n];
+    let mut g = c.benchmark_group("material_update");
+
+    let small = [2e-5, -1e-5, 0.5e-5, 1e-5, 0.0, -2e-5];
+    g.bench_function("elastic_baseline", |b| {
+        b.iter(|| el.stress(black_box(&small)))
+    });
+    g.bench_function("plastic_damage_elastic_branch", |b| {
+        b.iter(|| pd.update(black_box(&small), black_box(&old), &mut new, &ctx))
+    });
+    // Tensile cracking under a general 3D strain (return with tension and shear).
+    let crack = [3e-4, -5e-5, 2e-5, 1e-4, -3e-5, 4e-5];
+    g.bench_function("plastic_damage_plastic_branch_tension", |b| {
+        b.iter(|| pd.update(black_box(&crack), black_box(&old), &mut new, &ctx))
+    });
+    // Compressive crushing (return on the compressive side, hardening in κ_c).
+    let crush = [-1.2e-3, 2e-4, 1e-4, 1e-4, 0.0, -5e-5];
+    g.bench_function("plastic_damage_plastic_branch_compression", |b| {
+        b.iter(|| pd.update(black_box(&crush), black_box(&old), &mut new, &ctx))
+    });
+    g.finish();
+}
+
+criterion_group!(benches, material_update);
+criterion_main!(benches);

@@ -1,0 +1,194 @@
+//! Lee–Fenves (1998) uniaxial hardening/softening laws, written in the scaled equivalent
+//! plastic strain y = b ε̃ᵖ so that everything except the scale b is independent of the
+//! element size.
+//!
+//! Lee & Fenves (1998, J. Eng. Mech. 124(8), eqs. 11–14 of their paper; VERIFICATION.md W10):
+//!
+//! * nominal strength   f(ε̃ᵖ) = f₀ [(1+a) e^(−b ε̃ᵖ) − a e^(−2b ε̃ᵖ)]
+//! * degradation        D(ε̃ᵖ) = 1 − e^(−d ε̃ᵖ)                         (paper eq. 24)
+//! * effective strength f̄ = f/(1 − D) = f₀ [(1+a) e^(−(1−r)y) − a e^(−(2−r)y)],  r = d/b
+//! * dissipated energy  g = ∫₀^∞ f dε̃ᵖ = (f₀/b)(1 + a/2) = G_f / l_ch  (crack band)
+//! * normalised dissipated energy κ = (1/g) ∫₀^ε̃ᵖ f dε̃ᵖ ∈ [0, 1] (Lee–Fenves' damage variable).
+
+/// One uniaxial law (tension or compression).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SofteningLaw {
+    /// Initial yield strength f₀ (Pa, positive).
+    pub f0: f64,
+    /// Shape parameter a (0 ≤ a < 1 in tension, a ≥ 1 in compression).
+    pub a: f64,
+    /// Degradation ratio r = d/b, 0 < r ≤ 1.
+    pub r: f64,
+    /// Fracture (crushing) energy G (J/m²).
+    pub g_f: f64,
+}
+
+impl SofteningLaw {
+    /// Scale b (1/strain) for a characteristic length `l` from g = (f₀/b)(1 + a/2) = G/l.
+    #[inline]
+    pub fn b(&self, l: f64) -> f64 {
+        self.f0 * (1.0 + 0.5 * self.a) * l / self.g_f
+    }
+
+    /// Dissipated energy density g = G/l (J/m³).
+    #[inline]
+    pub fn g(&self, l: f64) -> f64 {
+        self.g_f / l
+    }
+
+    /// Nominal (damaged) strength f at scaled plastic strain y = b ε̃ᵖ (Pa).
+    #[inline]
+    pub fn stress(&self, y: f64) -> f64 {
+        let e = (-y).exp();
+        self.f0 * ((1.0 + self.a) * e - self.a * e * e)
+    }
+
+    /// Effective strength f̄ = f/(1 − D) at y (Pa): the cohesion c̄ of the yield function.
+    #[inline]
+    pub fn effective(&self, y: f64) -> f64 {
+        if y == 0.0 {
+            return self.f0;
+        }
+        let r = self.r;
+        self.f0 * ((1.0 + self.a) * (-(1.0 - r) * y).exp() - self.a * (-(2.0 - r) * y).exp())
+    }
+
+    /// Degradation D = 1 − e^(−d ε̃ᵖ) = 1 − e^(−r y) (paper eq. 24).
+    #[inline]
+    pub fn damage(&self, y: f64) -> f64 {
+        if y == 0.0 {
+            return 0.0;
+        }
+        1.0 - (-self.r * y).exp()
+    }
+
+    /// Normalised dissipated energy κ(y) = [(1+a)(1−e^(−y)) − (a/2)(1−e^(−2y))]/(1 + a/2).
+    #[inline]
+    pub fn kappa(&self, y: f64) -> f64 {
+        let e = (-y).exp();
+        ((1.0 + self.a) * (1.0 - e) - 0.5 * self.a * (1.0 - e * e)) / (1.0 + 0.5 * self.a)
+    }
+
+    /// Scaled plastic strain y at the peak of f (0 when the law softens from the start).
+    pub fn y_peak(&self) -> f64 {
+        if self.a > 1.0 {
+            (2.0 * self.a / (1.0 + self.a)).ln()
+        } else {
+            0.0
+        }
+    }
+
+    /// Peak nominal strength max f = f₀ (1+a)²/(4a) for a ≥ 1, f₀ otherwise (Pa).
+    pub fn peak(&self) -> f64 {
+        self.stress(self.y_peak())
+    }
+
+    /// Scaled plastic strain y at which the softening branch reaches f = f₀/2.
+    pub fn y_half(&self) -> f64 {
+        // a u² − (1+a) u + 1/2 = 0 with u = e^(−y), smaller root (after the peak).
+        let a = self.a;
+        let u = if a == 0.0 {
+            0.5
+        } else {
+            ((1.0 + a) - ((1.0 + a) * (1.0 + a) - 2.0 * a).sqrt()) / (2.0 * a)
+        };
+        -u.ln()
+    }
+
+    /// Largest characteristic length (m) for which the uniaxial stress–strain response of
+    /// one element has no snap-back, with initial modulus `e0`.
+    ///
+    /// Uniaxially ε = ε̃ᵖ + f̄(ε̃ᵖ)/E₀, so dε/dε̃ᵖ = 1 + f̄′/E₀ must stay ≥ 0. With
+    /// f̄′ = −f₀ b m(y), m(y) = (1+a)(1−r)e^(−(1−r)y) − a(2−r)e^(−(2−r)y), and
+    /// b = f₀(1+a/2) l/G the bound is l ≤ E₀ G / (f₀² (1+a/2) max m). When the effective
+    /// strength never decreases (max m ≤ 0, e.g. r = 1 with a = 0) there is no bound
+    /// (`f64::INFINITY`).
+    pub fn max_char_length(&self, e0: f64) -> f64 {
+        let (a, r) = (self.a, self.r);
+        let m = |y: f64| {
+            (1.0 + a) * (1.0 - r) * (-(1.0 - r) * y).exp() - a * (2.0 - r) * (-(2.0 - r) * y).exp()
+        };
+        let mut mmax = m(0.0).max(0.0);
+        if a > 0.0 && r < 1.0 {
+            let arg = a * (2.0 - r) * (2.0 - r) / ((1.0 + a) * (1.0 - r) * (1.0 - r));
+            if arg > 1.0 {
+                mmax = mmax.max(m(arg.ln()));
+            }
+        }
+        if mmax <= 0.0 {
+            f64::INFINITY
+        } else {
+            e0 * self.g_f / (self.f0 * self.f0 * (1.0 + 0.5 * a) * mmax)
+        }
+    }
+}
+
+/// Compression shape parameter from the initial yield and the peak strength,
+/// a_c = 2 f_c/f_c0 − 1 + 2 √((f_c/f_c0)² − f_c/f_c0) (Lee & Fenves 1998; W10).
+pub fn compressive_shape(fc0: f64, fc: f64) -> f64 {
+    let q = fc / fc0;
+    2.0 * q - 1.0 + 2.0 * (q * q - q).max(0.0).sqrt()
+}
+
+/// Degradation ratio r = d/b that gives degradation `d_ref` at scaled plastic strain `y_ref`
+/// (Lee & Fenves fix d from the stiffness degradation observed at one point of the curve).
+pub fn ratio_from_damage(y_ref: f64, d_ref: f64) -> f64 {
+    -(1.0 - d_ref).ln() / y_ref
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn w10_compression_shape_parameter() {
+        // VERIFICATION.md W10: f_c0 = 13, f_c = 24.1 MPa → a_c = 5.2240.
+        let a = compressive_shape(13.0e6, 24.1e6);
+        assert!((a - 5.2240).abs() < 5e-5, "a_c = {a}");
+        let law = SofteningLaw {
+            f0: 13.0e6,
+            a,
+            r: 1.0,
+            g_f: 1.0e4,
+        };
+        assert!(
+            (law.peak() - 24.1e6).abs() < 1e-6 * 24.1e6,
+            "peak {}",
+            law.peak()
+        );
+    }
+
+    #[test]
+    fn w10_tension_scale_and_energy() {
+        // E0 31027 MPa, f_t0 2.9 MPa, G_t 200 N/m, l 1 m, a_t 0 → b_t = 14500.
+        let law = SofteningLaw {
+            f0: 2.9e6,
+            a: 0.0,
+            r: 1.0,
+            g_f: 200.0,
+        };
+        assert!((law.b(1.0) - 14500.0).abs() < 1e-9);
+        assert!((law.stress(1.0) - 1.0669e6).abs() < 1e-4 * 1.0669e6);
+        assert!((law.damage(1.0) - 0.632).abs() < 5e-4);
+        assert!((law.kappa(1.0) - (1.0 - (-1.0f64).exp())).abs() < 1e-15);
+        assert_eq!(law.max_char_length(31027e6), f64::INFINITY);
+    }
+
+    #[test]
+    fn snap_back_bound_matches_pure_plastic_exponential_softening() {
+        // r → 0 (no degradation), a = 0: classical bound l ≤ E0 G/f0² for exponential softening.
+        let law = SofteningLaw {
+            f0: 3.0e6,
+            a: 0.0,
+            r: 1e-12,
+            g_f: 100.0,
+        };
+        let l = law.max_char_length(30e9);
+        assert!((l - 30e9 * 100.0 / 9e12).abs() < 1e-6 * l, "{l}");
+        // Check by sampling dε/dε̃ᵖ = 1 + f̄'/E0 at 1.01 l_max: negative at y = 0.
+        let b = law.b(1.01 * l);
+        let h = 1e-7;
+        let slope = (law.effective(h) - law.effective(0.0)) / h * b;
+        assert!(1.0 + slope / 30e9 < 0.0);
+    }
+}

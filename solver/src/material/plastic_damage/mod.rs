@@ -1,0 +1,414 @@
+//! Lee–Fenves plastic-damage model (Lee & Fenves 1998, J. Eng. Mech. 124(8)) in the 3D
+//! form of Omidi & Lotfi (2010), as used by the paper (§3, eqs. 23–26).
+//!
+//! Stages of one update (trial → check → return → degrade), see `docs/plastic_damage.md`:
+//!
+//! 1. trial effective stress σ̄ᵗʳ = E₀ : (ε − εᵖₙ) (eq. 23);
+//! 2. check the yield function F of eq. (25) at the start-of-step hardening: F ≤ 0 is elastic;
+//! 3. otherwise the implicit return in principal space ([`return_mapping`]) with the
+//!    non-associated hyperbolic Drucker–Prager potential of eq. (26) gives Δλ, εᵖₙ₊₁ and the
+//!    hardening variables; a return that does not converge is redone in 4, 16, 64 sub-steps;
+//! 4. optional Duvaut–Lions regularisation relaxes the state towards the inviscid one;
+//! 5. degradation D = 1 − (1 − D_c)(1 − s D_t), s = s₀ + (1 − s₀) r(σ̄) (eq. 24), and
+//!    σ = (1 − D) σ̄ (eq. 23).
+//!
+//! The hardening variables are the equivalent plastic strains ε̃ᵖ_t, ε̃ᵖ_c, stored scaled by
+//! b (y = b ε̃ᵖ), which makes the stored state independent of the element size; b follows
+//! from the fracture energy and `PointContext::char_length` (crack band).
+
+mod hardening;
+mod params;
+mod potential;
+mod principal;
+mod return_mapping;
+mod yield_surface;
+
+#[cfg(test)]
+mod tests;
+
+pub use hardening::{compressive_shape, SofteningLaw};
+pub use params::{mohr_coulomb_fc, Constants, PlasticDamageParams};
+
+use crate::error::{DcfmError, Result};
+use crate::material::{Elastic, PointContext, Voigt};
+use potential::Potential;
+use principal::{principal_values, Spectral};
+use return_mapping::LocalProblem;
+use yield_surface::{invariants, tension_weight, YieldSurface};
+
+/// Layout of the per-point state.
+mod slot {
+    /// Plastic strain εᵖ (Voigt, engineering shear), 6 values.
+    pub const PLASTIC: usize = 0;
+    /// Total strain of the last update (start of the next increment), 6 values.
+    pub const STRAIN: usize = 6;
+    /// y_t = b_t ε̃ᵖ_t.
+    pub const Y_T: usize = 12;
+    /// y_c = b_c ε̃ᵖ_c.
+    pub const Y_C: usize = 13;
+    /// D of eq. (24) at the end of the last update.
+    pub const DAMAGE: usize = 14;
+    /// Dissipated energy density g_t κ_t + g_c κ_c (J/m³).
+    pub const DISSIPATED: usize = 15;
+    /// Number of values.
+    pub const LEN: usize = 16;
+}
+
+/// Sub-step counts tried in turn when a return does not converge.
+const SUBSTEPS: [usize; 4] = [1, 4, 16, 64];
+
+/// The plastic-damage material of one region.
+#[derive(Clone, Debug)]
+pub struct PlasticDamage {
+    name: String,
+    elastic: Elastic,
+    constants: Constants,
+    surface: YieldSurface,
+    potential: Potential,
+    max_element_size: f64,
+    tol: f64,
+}
+
+/// Internal variables advanced by one return.
+#[derive(Clone, Copy, Debug)]
+struct Internal {
+    plastic: Voigt,
+    y_t: f64,
+    y_c: f64,
+}
+
+impl PlasticDamage {
+    /// Validate the parameters of material `name` (errors: [`DcfmError::Material`]).
+    pub fn new(name: &str, elastic: Elastic, p: &PlasticDamageParams) -> Result<Self> {
+        let constants = params::validate(name, p)?;
+        let max_element_size = constants
+            .tension
+            .max_char_length(elastic.young)
+            .min(constants.compression.max_char_length(elastic.young));
+        Ok(Self {
+            name: name.to_string(),
+            elastic,
+            surface: YieldSurface {
+                alpha: constants.alpha,
+                gamma: constants.gamma,
+            },
+            potential: Potential {
+                tan_psi: constants.tan_psi,
+                hyper: constants.hyper,
+            },
+            tol: 1e-10 * constants.compression.f0,
+            constants,
+            max_element_size,
+        })
+    }
+
+    /// Initial elastic constants E₀.
+    pub fn elastic(&self) -> &Elastic {
+        &self.elastic
+    }
+
+    /// Validated model constants.
+    pub fn constants(&self) -> &Constants {
+        &self.constants
+    }
+
+    /// Number of `f64` per integration point.
+    pub fn state_len(&self) -> usize {
+        slot::LEN
+    }
+
+    /// Virgin state: no plastic strain, no damage.
+    pub fn init_state(&self, s: &mut [f64]) {
+        s[..slot::LEN].fill(0.0);
+    }
+
+    /// Largest characteristic length (m) without snap-back of the uniaxial tensile or
+    /// compressive response of one element ([`SofteningLaw::max_char_length`]);
+    /// `f64::INFINITY` when the effective strengths never soften.
+    pub fn max_element_size(&self) -> f64 {
+        self.max_element_size
+    }
+
+    /// Error naming the material and the limit when an element of characteristic length
+    /// `l` (m) would snap back.
+    pub fn check_char_length(&self, l: f64) -> Result<()> {
+        if l <= self.max_element_size {
+            return Ok(());
+        }
+        Err(DcfmError::Material {
+            material: self.name.clone(),
+            message: format!(
+                "element characteristic length {l:.4e} m exceeds {:.4e} m, the largest \
+                 element size without snap-back for gt = {} N/m, gc = {} N/m (increase the \
+                 fracture energies, or refine the mesh)",
+                self.max_element_size, self.constants.tension.g_f, self.constants.compression.g_f
+            ),
+        })
+    }
+
+    fn problem(&self, l: f64) -> LocalProblem<'_> {
+        LocalProblem {
+            bulk: self.elastic.bulk(),
+            mu: self.elastic.mu,
+            surface: &self.surface,
+            potential: &self.potential,
+            tension: &self.constants.tension,
+            compression: &self.constants.compression,
+            b_t: self.constants.tension.b(l),
+            b_c: self.constants.compression.b(l),
+            tol: self.tol,
+        }
+    }
+
+    /// One backward-Euler return to total strain `eps`; `false` if the local solve did
+    /// not converge.
+    fn return_map(&self, pb: &LocalProblem, eps: &Voigt, st: &Internal) -> (Internal, bool) {
+        let trial = self.elastic.stress(&sub(eps, &st.plastic));
+        // Cheap check on the invariants first; the eigenvalues only near the surface.
+        let (i1, q) = invariants(&trial);
+        let (ct, cc) = (
+            pb.tension.effective(st.y_t),
+            pb.compression.effective(st.y_c),
+        );
+        if self.surface.surely_inside(i1, q, ct, cc)
+            || pb.yield_value(&principal_values(&trial), st.y_t, st.y_c) <= 0.0
+        {
+            return (*st, true);
+        }
+        let sp = Spectral::of(&trial);
+        let ret = pb.solve(&sp.values, st.y_t, st.y_c);
+        let dp = [
+            ret.dlam * ret.m[0],
+            ret.dlam * ret.m[1],
+            ret.dlam * ret.m[2],
+        ];
+        let dep = sp.strain_voigt(&dp);
+        let mut plastic = st.plastic;
+        for (p, d) in plastic.iter_mut().zip(dep.iter()) {
+            *p += d;
+        }
+        let ok = ret.converged && plastic.iter().all(|v| v.is_finite());
+        if !ok && !plastic.iter().all(|v| v.is_finite()) {
+            return (*st, false);
+        }
+        (
+            Internal {
+                plastic,
+                y_t: ret.y_t,
+                y_c: ret.y_c,
+            },
+            ok,
+        )
+    }
+
+    /// Inviscid state at `eps` from `start` (strain `eps0`), sub-stepping on failure.
+    fn integrate(
+        &self,
+        pb: &LocalProblem,
+        eps0: &Voigt,
+        eps: &Voigt,
+        start: &Internal,
+    ) -> Internal {
+        let mut last = *start;
+        for &n in SUBSTEPS.iter() {
+            let mut st = *start;
+            let mut ok = true;
+            for k in 1..=n {
+                let t = k as f64 / n as f64;
+                let mut e = [0.0; 6];
+                for i in 0..6 {
+                    e[i] = eps0[i] + t * (eps[i] - eps0[i]);
+                }
+                let (next, conv) = self.return_map(pb, &e, &st);
+                st = next;
+                ok &= conv;
+            }
+            if ok {
+                return st;
+            }
+            last = st;
+        }
+        last
+    }
+
+    /// Stress at total strain `strain`, advancing the state `old` → `new` (eqs. 23–26).
+    /// Allocation free.
+    pub fn update(
+        &self,
+        strain: &Voigt,
+        old: &[f64],
+        new: &mut [f64],
+        ctx: &PointContext,
+    ) -> Voigt {
+        let old = &old[..slot::LEN];
+        let new = &mut new[..slot::LEN];
+        if !strain.iter().all(|v| v.is_finite()) {
+            // Let the driver see the bad input as a non-finite stress; keep the state.
+            new.copy_from_slice(old);
+            return [f64::NAN; 6];
+        }
+        debug_assert!(ctx.char_length > 0.0, "characteristic length must be > 0");
+        let l = ctx.char_length.max(1e-12);
+        let pb = self.problem(l);
+        let start = Internal {
+            plastic: voigt(&old[slot::PLASTIC..]),
+            y_t: old[slot::Y_T],
+            y_c: old[slot::Y_C],
+        };
+        let eps0 = voigt(&old[slot::STRAIN..]);
+        let mut st = self.integrate(&pb, &eps0, strain, &start);
+
+        // Duvaut–Lions: x' = (x_n − x_∞)/η ⇒ x_{n+1} = x_n + w (x_∞ − x_n), w = Δt/(η + Δt).
+        if self.constants.viscosity > 0.0 {
+            let w = if ctx.dt > 0.0 {
+                ctx.dt / (self.constants.viscosity + ctx.dt)
+            } else {
+                0.0
+            };
+            for i in 0..6 {
+                st.plastic[i] = start.plastic[i] + w * (st.plastic[i] - start.plastic[i]);
+            }
+            st.y_t = start.y_t + w * (st.y_t - start.y_t);
+            st.y_c = start.y_c + w * (st.y_c - start.y_c);
+        }
+
+        let (t, c) = (&self.constants.tension, &self.constants.compression);
+        let eff = self.elastic.stress(&sub(strain, &st.plastic));
+        let d = self.degradation(&eff, st.y_t, st.y_c);
+        new[slot::PLASTIC..slot::PLASTIC + 6].copy_from_slice(&st.plastic);
+        new[slot::STRAIN..slot::STRAIN + 6].copy_from_slice(strain);
+        new[slot::Y_T] = st.y_t;
+        new[slot::Y_C] = st.y_c;
+        new[slot::DAMAGE] = d;
+        let mut w = old[slot::DISSIPATED];
+        if st.y_t != start.y_t {
+            w += t.g(l) * (t.kappa(st.y_t) - t.kappa(start.y_t));
+        }
+        if st.y_c != start.y_c {
+            w += c.g(l) * (c.kappa(st.y_c) - c.kappa(start.y_c));
+        }
+        new[slot::DISSIPATED] = w;
+        scale(&eff, 1.0 - d)
+    }
+
+    /// D = 1 − (1 − D_c)(1 − s D_t), s = s₀ + (1 − s₀) r(σ̄) (eq. 24).
+    #[inline]
+    fn degradation(&self, eff: &Voigt, y_t: f64, y_c: f64) -> f64 {
+        let dt = self.constants.tension.damage(y_t);
+        let dc = self.constants.compression.damage(y_c);
+        if dt == 0.0 {
+            return dc;
+        }
+        let s0 = self.constants.s0;
+        // r = 1 (0) when even the smallest (largest) principal stress bound, Ī₁/3 ∓ (2/3)q,
+        // is ≥ 0 (≤ 0); otherwise from the eigenvalues.
+        let (i1, q) = invariants(eff);
+        let r = if i1 / 3.0 - 2.0 * q / 3.0 >= 0.0 {
+            1.0
+        } else if i1 / 3.0 + 2.0 * q / 3.0 <= 0.0 {
+            0.0
+        } else {
+            tension_weight(&principal_values(eff))
+        };
+        let s = s0 + (1.0 - s0) * r;
+        1.0 - (1.0 - dc) * (1.0 - s * dt)
+    }
+
+    /// σ = (1 − D) E₀ : (ε − εᵖ) for an updated state (eq. 23), D re-evaluated at this strain.
+    pub fn stress_from_state(&self, strain: &Voigt, state: &[f64]) -> Voigt {
+        let eff = self.effective_stress(strain, state);
+        let d = self.degradation(&eff, state[slot::Y_T], state[slot::Y_C]);
+        scale(&eff, 1.0 - d)
+    }
+
+    /// σ̄ = E₀ : (ε − εᵖ) (eq. 23).
+    pub fn effective_stress(&self, strain: &Voigt, state: &[f64]) -> Voigt {
+        self.elastic
+            .stress(&sub(strain, &voigt(&state[slot::PLASTIC..])))
+    }
+
+    /// F of eq. (25) (Pa) at `strain` with the hardening of `state`; ≤ 0 inside.
+    pub fn yield_function(&self, strain: &Voigt, state: &[f64]) -> f64 {
+        let s = principal_values(&self.effective_stress(strain, state));
+        self.surface.value(
+            &s,
+            self.constants.tension.effective(state[slot::Y_T]),
+            self.constants.compression.effective(state[slot::Y_C]),
+        )
+    }
+
+    /// D of eq. (24) at the end of the last update.
+    pub fn damage(&self, s: &[f64]) -> f64 {
+        s[slot::DAMAGE]
+    }
+
+    /// D_t = 1 − e^(−d_t ε̃ᵖ_t) (eq. 24).
+    pub fn tensile_damage(&self, s: &[f64]) -> f64 {
+        self.constants.tension.damage(s[slot::Y_T])
+    }
+
+    /// D_c = 1 − e^(−d_c ε̃ᵖ_c) (eq. 24).
+    pub fn compressive_damage(&self, s: &[f64]) -> f64 {
+        self.constants.compression.damage(s[slot::Y_C])
+    }
+
+    /// Lee–Fenves tensile damage variable κ_t = (1/g_t)∫f_t dε̃ᵖ_t ∈ [0, 1].
+    pub fn kappa_t(&self, s: &[f64]) -> f64 {
+        self.constants.tension.kappa(s[slot::Y_T])
+    }
+
+    /// Lee–Fenves compressive damage variable κ_c ∈ [0, 1].
+    pub fn kappa_c(&self, s: &[f64]) -> f64 {
+        self.constants.compression.kappa(s[slot::Y_C])
+    }
+
+    /// Equivalent tensile plastic strain ε̃ᵖ_t for characteristic length `l`.
+    pub fn equivalent_plastic_strain_t(&self, s: &[f64], l: f64) -> f64 {
+        s[slot::Y_T] / self.constants.tension.b(l)
+    }
+
+    /// Equivalent compressive plastic strain ε̃ᵖ_c for characteristic length `l`.
+    pub fn equivalent_plastic_strain_c(&self, s: &[f64], l: f64) -> f64 {
+        s[slot::Y_C] / self.constants.compression.b(l)
+    }
+
+    /// Plastic strain εᵖ (Voigt, engineering shear).
+    pub fn plastic_strain(&self, s: &[f64]) -> Voigt {
+        voigt(&s[slot::PLASTIC..])
+    }
+
+    /// Energy dissipated by cracking and crushing per unit volume, g_t κ_t + g_c κ_c (J/m³),
+    /// i.e. ∫ f_t dε̃ᵖ_t + ∫ f_c dε̃ᵖ_c (Lee & Fenves 1998).
+    pub fn dissipated_energy_density(&self, s: &[f64]) -> f64 {
+        s[slot::DISSIPATED]
+    }
+
+    /// Recoverable (elastic) energy density ½ σ : (ε − εᵖ) (J/m³).
+    pub fn recoverable_energy_density(&self, strain: &Voigt, state: &[f64]) -> f64 {
+        let sig = self.stress_from_state(strain, state);
+        let e = sub(strain, &voigt(&state[slot::PLASTIC..]));
+        0.5 * sig.iter().zip(e.iter()).map(|(a, b)| a * b).sum::<f64>()
+    }
+}
+
+#[inline]
+fn voigt(s: &[f64]) -> Voigt {
+    [s[0], s[1], s[2], s[3], s[4], s[5]]
+}
+
+#[inline]
+fn sub(a: &Voigt, b: &Voigt) -> Voigt {
+    [
+        a[0] - b[0],
+        a[1] - b[1],
+        a[2] - b[2],
+        a[3] - b[3],
+        a[4] - b[4],
+        a[5] - b[5],
+    ]
+}
+
+#[inline]
+fn scale(a: &Voigt, k: f64) -> Voigt {
+    [k * a[0], k * a[1], k * a[2], k * a[3], k * a[4], k * a[5]]
+}

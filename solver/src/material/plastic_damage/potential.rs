@@ -1,0 +1,135 @@
+//! Non-associated hyperbolic Drucker–Prager flow potential, eq. (26).
+//!
+//! In the Abaqus form Φ = √((ε f_t0 tan ψ)² + 3J̄₂) + (tan ψ/3) Ī₁. It is √(3/2) times the
+//! paper's Φ = √((ξ α_p f_t0)² + 2J̄₂) + α_p Ī₁ with α_p = tan ψ/(3√(3/2)) and ξ = 3ε, so the
+//! flow directions are identical (the factor goes into the plastic multiplier).
+//!
+//! The gradient m = ∂Φ/∂σ̄ = (3/2) s/R + (tan ψ/3) 1, R = √(h² + q²), h = ε f_t0 tan ψ, is
+//! coaxial with σ̄. The backward-Euler return σ̄ = σ̄ᵗʳ − Δλ E₀ : m therefore keeps the
+//! principal directions; the deviator shrinks radially, s = sᵗʳ q/qᵗʳ with
+//! q (1 + 3μΔλ/R(q)) = qᵗʳ, and the mean stress moves by −K Δλ tan ψ.
+
+/// Constants of the potential.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Potential {
+    /// tan ψ.
+    pub tan_psi: f64,
+    /// h = ε f_t0 tan ψ (Pa).
+    pub hyper: f64,
+}
+
+impl Potential {
+    /// Flow direction m = ∂Φ/∂σ̄ in principal space (the return computes it inline).
+    #[cfg(test)]
+    pub fn gradient(&self, s: &[f64; 3]) -> [f64; 3] {
+        let mean = (s[0] + s[1] + s[2]) / 3.0;
+        let q = super::yield_surface::von_mises(s);
+        let r = (self.hyper * self.hyper + q * q).sqrt();
+        let t = self.tan_psi / 3.0;
+        [
+            1.5 * (s[0] - mean) / r + t,
+            1.5 * (s[1] - mean) / r + t,
+            1.5 * (s[2] - mean) / r + t,
+        ]
+    }
+
+    /// Principal effective stress after a return of size Δλ from the trial `trial`
+    /// (bulk modulus `k`, shear modulus `mu`), with the flow direction there.
+    pub fn returned(&self, trial: &[f64; 3], dlam: f64, k: f64, mu: f64) -> ([f64; 3], [f64; 3]) {
+        let mean_tr = (trial[0] + trial[1] + trial[2]) / 3.0;
+        let dev = [trial[0] - mean_tr, trial[1] - mean_tr, trial[2] - mean_tr];
+        let q_tr = super::yield_surface::von_mises(trial);
+        let q = self.shrink(q_tr, 3.0 * mu * dlam);
+        let scale = if q_tr > 0.0 { q / q_tr } else { 0.0 };
+        let mean = mean_tr - k * dlam * self.tan_psi;
+        let s = [
+            mean + scale * dev[0],
+            mean + scale * dev[1],
+            mean + scale * dev[2],
+        ];
+        let r = (self.hyper * self.hyper + q * q).sqrt();
+        let t = self.tan_psi / 3.0;
+        let m = [
+            1.5 * scale * dev[0] / r + t,
+            1.5 * scale * dev[1] / r + t,
+            1.5 * scale * dev[2] / r + t,
+        ];
+        (s, m)
+    }
+
+    /// Root q ∈ [0, qᵗʳ] of φ(q) = q + c q/√(h² + q²) − qᵗʳ, c = 3μΔλ ≥ 0.
+    ///
+    /// φ is increasing and concave, so Newton started left of the root (at the h = 0
+    /// solution max(qᵗʳ − c, 0), where φ ≤ 0) climbs monotonically to it.
+    fn shrink(&self, q_tr: f64, c: f64) -> f64 {
+        if q_tr <= 0.0 {
+            return 0.0;
+        }
+        if c <= 0.0 {
+            return q_tr;
+        }
+        let h2 = self.hyper * self.hyper;
+        let mut q = (q_tr - c).max(0.0);
+        for _ in 0..100 {
+            let r = (h2 + q * q).sqrt();
+            let phi = q + c * q / r - q_tr;
+            let dphi = 1.0 + c * h2 / (r * r * r);
+            let step = phi / dphi;
+            q = (q - step).clamp(0.0, q_tr);
+            if step.abs() <= 1e-15 * q_tr {
+                break;
+            }
+        }
+        q
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn returned_stress_satisfies_backward_euler() {
+        let pot = Potential {
+            tan_psi: 30f64.to_radians().tan(),
+            hyper: 0.1 * 2.9e6 * 30f64.to_radians().tan(),
+        };
+        let (k, mu) = (16e9, 13e9);
+        let trial = [5e6, -1e6, -8e6];
+        let dlam = 2e-4;
+        let (s, m) = pot.returned(&trial, dlam, k, mu);
+        // σ̄ = σ̄tr − Δλ E0 : m with E0 : m = 2μ m + λ tr(m) 1, λ = k − 2μ/3.
+        let lam = k - 2.0 * mu / 3.0;
+        let tr = m[0] + m[1] + m[2];
+        for i in 0..3 {
+            let expect = trial[i] - dlam * (2.0 * mu * m[i] + lam * tr);
+            assert!((s[i] - expect).abs() < 1e-6, "{i}: {} vs {}", s[i], expect);
+        }
+        // And m is the gradient at the returned stress.
+        let g = pot.gradient(&s);
+        for i in 0..3 {
+            assert!((g[i] - m[i]).abs() < 1e-12);
+        }
+    }
+
+    #[test]
+    fn abaqus_form_is_a_multiple_of_paper_eq_26() {
+        // Φ_abaqus = √(3/2) Φ_paper with α_p = tanψ/(3√(3/2)), ξ = 3ε: compare gradients.
+        let (psi, ecc, ft0): (f64, f64, f64) = (35f64.to_radians(), 0.1, 3e6);
+        let pot = Potential {
+            tan_psi: psi.tan(),
+            hyper: ecc * ft0 * psi.tan(),
+        };
+        let ap = psi.tan() / (3.0 * 1.5f64.sqrt());
+        let xi = 3.0 * ecc;
+        let s = [4e6, 1e6, -6e6];
+        let mean = (s[0] + s[1] + s[2]) / 3.0;
+        let j2: f64 = s.iter().map(|v| (v - mean) * (v - mean)).sum::<f64>() / 2.0;
+        let root = ((xi * ap * ft0).powi(2) + 2.0 * j2).sqrt();
+        let g = pot.gradient(&s);
+        for i in 0..3 {
+            let paper = (s[i] - mean) / root + ap;
+            assert!((g[i] - 1.5f64.sqrt() * paper).abs() < 1e-12, "{i}");
+        }
+    }
+}

@@ -1,0 +1,166 @@
+//! Implicit (backward-Euler) return mapping in principal effective-stress space.
+//!
+//! Unknowns: the plastic multiplier Δλ and the two hardening variables y_t = b_t ε̃ᵖ_t,
+//! y_c = b_c ε̃ᵖ_c. Because the flow direction of eq. (26) is coaxial with σ̄, the returned
+//! principal stresses are an explicit function of Δλ alone ([`Potential::returned`]), and
+//! so are the hardening variables through the Lee–Fenves (1998) evolution laws
+//!
+//!   Δε̃ᵖ_t = r(σ̂) Δλ ⟨m̂₁⟩,   Δε̃ᵖ_c = (1 − r(σ̂)) Δλ ⟨−m̂₃⟩,
+//!
+//! (the brackets keep the variables monotone when the dilatant potential makes every
+//! principal plastic strain rate positive). The local system is thereby condensed to one
+//! scalar equation F(Δλ) = 0 of eq. (25), solved by a bracketing Illinois (regula falsi)
+//! iteration: bounded, derivative free, and always left on the admissible side F ≤ 0.
+
+use super::hardening::SofteningLaw;
+use super::potential::Potential;
+use super::yield_surface::{tension_weight, YieldSurface};
+
+/// Iteration caps of the local solve.
+const MAX_EXPAND: usize = 200;
+const MAX_ITER: usize = 200;
+
+/// Everything the local problem needs, for one characteristic length.
+#[derive(Clone, Copy, Debug)]
+pub struct LocalProblem<'a> {
+    /// Bulk modulus K (Pa).
+    pub bulk: f64,
+    /// Shear modulus μ (Pa).
+    pub mu: f64,
+    /// Eq. (25).
+    pub surface: &'a YieldSurface,
+    /// Eq. (26).
+    pub potential: &'a Potential,
+    /// Tension law.
+    pub tension: &'a SofteningLaw,
+    /// Compression law.
+    pub compression: &'a SofteningLaw,
+    /// Scales b_t, b_c for this element's characteristic length.
+    pub b_t: f64,
+    /// See `b_t`.
+    pub b_c: f64,
+    /// Convergence tolerance on F (Pa).
+    pub tol: f64,
+}
+
+/// Result of a return.
+#[derive(Clone, Copy, Debug)]
+pub struct Returned {
+    /// Plastic multiplier Δλ.
+    pub dlam: f64,
+    /// Principal flow direction m̂ at the returned stress.
+    pub m: [f64; 3],
+    /// Hardening variables at the end of the step.
+    pub y_t: f64,
+    /// See `y_t`.
+    pub y_c: f64,
+    /// F at the returned point (Pa).
+    pub f: f64,
+    /// Whether |F| ≤ tol (or the bracket collapsed onto a discontinuity).
+    pub converged: bool,
+}
+
+impl LocalProblem<'_> {
+    /// F of eq. (25) at the start-of-step hardening for principal stresses `s`.
+    #[inline]
+    pub fn yield_value(&self, s: &[f64; 3], y_t: f64, y_c: f64) -> f64 {
+        self.surface.value(
+            s,
+            self.tension.effective(y_t),
+            self.compression.effective(y_c),
+        )
+    }
+
+    /// State after a return of size Δλ from the trial.
+    #[inline]
+    fn evaluate(&self, trial: &[f64; 3], y_t0: f64, y_c0: f64, dlam: f64) -> Returned {
+        let (s, m) = self.potential.returned(trial, dlam, self.bulk, self.mu);
+        let r = tension_weight(&s);
+        let y_t = y_t0 + self.b_t * r * dlam * m[0].max(0.0);
+        let y_c = y_c0 + self.b_c * (1.0 - r) * dlam * (-m[2]).max(0.0);
+        Returned {
+            dlam,
+            m,
+            y_t,
+            y_c,
+            f: self.yield_value(&s, y_t, y_c),
+            converged: false,
+        }
+    }
+
+    /// Return the sorted principal trial stress `trial` (with F(trial) > 0) to the yield
+    /// surface from the hardening state (y_t0, y_c0).
+    pub fn solve(&self, trial: &[f64; 3], y_t0: f64, y_c0: f64) -> Returned {
+        let f_tr = self.yield_value(trial, y_t0, y_c0);
+        // Bracket: F(0) > 0; expand Δλ geometrically from an elastic-slope estimate until
+        // F ≤ 0 (F → −∞ as Δλ → ∞ because the mean stress falls as K Δλ tan ψ).
+        let (mut a, mut fa) = (0.0, f_tr);
+        let mut hi = (f_tr / (3.0 * self.mu)).max(f64::MIN_POSITIVE);
+        let mut at_hi = self.evaluate(trial, y_t0, y_c0, hi);
+        let mut expanded = 0;
+        // (written so that a NaN F also enters the loop and returns)
+        while at_hi.f.is_nan() || at_hi.f > 0.0 {
+            if !at_hi.f.is_finite() || expanded == MAX_EXPAND {
+                return at_hi;
+            }
+            if at_hi.f.abs() <= self.tol {
+                at_hi.converged = true;
+                return at_hi;
+            }
+            a = hi;
+            fa = at_hi.f;
+            hi *= 4.0;
+            at_hi = self.evaluate(trial, y_t0, y_c0, hi);
+            expanded += 1;
+        }
+        if at_hi.f.abs() <= self.tol {
+            at_hi.converged = true;
+            return at_hi;
+        }
+        // Illinois iteration on [a, b] with F(a) > 0 ≥ F(b).
+        let (mut b, mut fb) = (hi, at_hi.f);
+        let mut best = at_hi;
+        let mut side = 0i8;
+        for _ in 0..MAX_ITER {
+            let mut c = (a * fb - b * fa) / (fb - fa);
+            if !(c > a && c < b) {
+                c = 0.5 * (a + b);
+            }
+            let at_c = self.evaluate(trial, y_t0, y_c0, c);
+            if !at_c.f.is_finite() {
+                break;
+            }
+            if at_c.f.abs() <= self.tol {
+                return Returned {
+                    converged: true,
+                    ..at_c
+                };
+            }
+            if at_c.f > 0.0 {
+                a = c;
+                fa = at_c.f;
+                if side == 1 {
+                    fb *= 0.5;
+                }
+                side = 1;
+            } else {
+                b = c;
+                fb = at_c.f;
+                best = at_c;
+                if side == -1 {
+                    fa *= 0.5;
+                }
+                side = -1;
+            }
+            if b - a <= 4.0 * f64::EPSILON * b {
+                // F jumps across the root (the weight r is discontinuous at σ̄ = 0): the
+                // admissible end of the collapsed bracket is the answer.
+                return Returned {
+                    converged: true,
+                    ..best
+                };
+            }
+        }
+        best
+    }
+}

@@ -424,6 +424,15 @@ fn build(file: CaseFile, label: &str, dir: &Path) -> Result<Case> {
             ));
         }
     }
+    let thr = file.output.damage_threshold;
+    if !(thr.is_finite() && thr > 0.0 && thr < 1.0) {
+        return Err(DcfmError::invalid(
+            label,
+            "output.damage_threshold",
+            thr,
+            "must be in (0, 1)",
+        ));
+    }
     if file.output.history_every == 0 {
         return Err(DcfmError::invalid(
             label,

@@ -71,6 +71,14 @@ pub struct OutputSection {
     /// Write a checkpoint every this many steps (0: never), for `dcfm run --resume`.
     #[serde(default)]
     pub checkpoint_every: u64,
+    /// An integration point counts in the damaged volume (eq. 27) when its D_t or D_c is
+    /// at least this (docs/plastic_damage.md §5).
+    #[serde(default = "default_damage_threshold")]
+    pub damage_threshold: f64,
+}
+
+fn default_damage_threshold() -> f64 {
+    0.1
 }
 
 impl Default for OutputSection {
@@ -81,6 +89,7 @@ impl Default for OutputSection {
             nodes: Vec::new(),
             elements: Vec::new(),
             checkpoint_every: 0,
+            damage_threshold: default_damage_threshold(),
         }
     }
 }

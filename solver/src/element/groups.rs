@@ -300,22 +300,83 @@ impl ElementGroup {
             .collect()
     }
 
-    /// Element-average damage D (0 for models without damage), in the group's order.
-    pub fn element_damage(&self) -> Vec<f64> {
+    /// Volume of every integration point of element `le` (one-point: V; full: w·det J).
+    #[inline]
+    fn point_volume(&self, le: usize, gp: usize) -> f64 {
+        match &self.geometry {
+            GroupGeometry::Uniform(g) => g[le].volume,
+            GroupGeometry::Full(g) => g[le].wdet[gp],
+        }
+    }
+
+    /// Element averages (volume-weighted over the points) of the damage variables:
+    /// per element [D, D_t, D_c, κ_t, κ_c, εᵖ (6)], or `None` without a damage model.
+    pub fn element_damage_fields(&self) -> Option<Vec<[f64; 11]>> {
+        if !self.material.has_damage() {
+            return None;
+        }
         let stride = self.states.stride();
         let np = self.integration.points();
         let state = self.states.current();
-        (0..self.len())
-            .map(|le| {
-                (0..np)
-                    .map(|g| {
-                        let p = le * np + g;
-                        self.material.damage(&state[p * stride..(p + 1) * stride])
-                    })
-                    .sum::<f64>()
-                    / np as f64
-            })
-            .collect()
+        Some(
+            (0..self.len())
+                .map(|le| {
+                    let mut acc = [0.0; 11];
+                    for gp in 0..np {
+                        let p = le * np + gp;
+                        let w = self.point_volume(le, gp) / self.volume[le];
+                        let d = self
+                            .material
+                            .damage_state(&state[p * stride..(p + 1) * stride])
+                            .unwrap_or_default();
+                        let vals = [d.d, d.dt, d.dc, d.kappa_t, d.kappa_c];
+                        for k in 0..5 {
+                            acc[k] += w * vals[k];
+                        }
+                        for k in 0..6 {
+                            acc[5 + k] += w * d.plastic_strain[k];
+                        }
+                    }
+                    acc
+                })
+                .collect(),
+        )
+    }
+
+    /// Damaged volume of eq. (27): the summed volume of the integration points whose
+    /// tensile damage D_t (first value), compressive damage D_c (second) or either of them
+    /// (third) is at least `threshold` (docs/plastic_damage.md §5).
+    pub fn damaged_volume(&self, threshold: f64) -> [f64; 3] {
+        let mut v = [0.0; 3];
+        if !self.material.has_damage() {
+            return v;
+        }
+        let stride = self.states.stride();
+        let np = self.integration.points();
+        let state = self.states.current();
+        for le in 0..self.len() {
+            for gp in 0..np {
+                let p = le * np + gp;
+                if let Some(d) = self
+                    .material
+                    .damage_state(&state[p * stride..(p + 1) * stride])
+                {
+                    let pv = self.point_volume(le, gp);
+                    let t = d.dt >= threshold;
+                    let c = d.dc >= threshold;
+                    if t {
+                        v[0] += pv;
+                    }
+                    if c {
+                        v[1] += pv;
+                    }
+                    if t || c {
+                        v[2] += pv;
+                    }
+                }
+            }
+        }
+        v
     }
 
     /// Elastic strain energy ½ ∫ ε : E0 : ε dV (+ hourglass energy ½ κ q²) of the group for

@@ -19,6 +19,22 @@ pub use point_states::PointStates;
 /// Voigt 6-vector: xx, yy, zz, xy, yz, zx (engineering shear for strains).
 pub type Voigt = [f64; 6];
 
+/// Damage variables of one integration point (models without damage have none).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct DamageState {
+    /// D of eq. (24).
+    pub d: f64,
+    /// Tensile damage D_t.
+    pub dt: f64,
+    /// Compressive damage D_c.
+    pub dc: f64,
+    /// Tensile and compressive hardening variables κ_t, κ_c.
+    pub kappa_t: f64,
+    pub kappa_c: f64,
+    /// Plastic strain εᵖ (Voigt, engineering shear).
+    pub plastic_strain: Voigt,
+}
+
 /// What a material update may need to know about the point besides its strain.
 #[derive(Clone, Copy, Debug)]
 pub struct PointContext {
@@ -92,6 +108,26 @@ impl Material {
         match self {
             Material::Elastic(e) => e.stress(strain),
             Material::PlasticDamage(p) => p.stress_from_state(strain, state),
+        }
+    }
+
+    /// True when the model carries damage variables.
+    pub fn has_damage(&self) -> bool {
+        matches!(self, Material::PlasticDamage(_))
+    }
+
+    /// Damage variables of a point state (`None` for models without damage).
+    pub fn damage_state(&self, state: &[f64]) -> Option<DamageState> {
+        match self {
+            Material::Elastic(_) => None,
+            Material::PlasticDamage(p) => Some(DamageState {
+                d: p.damage(state),
+                dt: p.tensile_damage(state),
+                dc: p.compressive_damage(state),
+                kappa_t: p.kappa_t(state),
+                kappa_c: p.kappa_c(state),
+                plastic_strain: p.plastic_strain(state),
+            }),
         }
     }
 

@@ -61,7 +61,7 @@ fn norm(x: &[f64; 3]) -> f64 {
     (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt()
 }
 
-fn history_header(output: &OutputSection) -> Vec<String> {
+fn history_header(output: &OutputSection, sim: &Simulation) -> Vec<String> {
     let mut h: Vec<String> = [
         "time", "kinetic", "internal", "damping", "contact", "external", "input", "residual",
     ]
@@ -78,6 +78,11 @@ fn history_header(output: &OutputSection) -> Vec<String> {
     for e in &output.elements {
         for c in ["xx", "yy", "zz", "xy", "yz", "zx"] {
             h.push(format!("elem{e}_s{c}"));
+        }
+    }
+    for g in sim.model.groups.iter().filter(|g| g.material.has_damage()) {
+        for k in ["tension", "compression", "total"] {
+            h.push(format!("damaged_volume_{k}_{}", g.name));
         }
     }
     h
@@ -106,6 +111,9 @@ fn history_row(sim: &Simulation, output: &OutputSection, row: &mut Vec<f64>) {
         let (_, s) = sim.model.element_strain_stress(el as usize, &sim.u);
         row.extend(s);
     }
+    for g in sim.model.groups.iter().filter(|g| g.material.has_damage()) {
+        row.extend(g.damaged_volume(output.damage_threshold));
+    }
 }
 
 /// Write one VTU of the current state and add it to the collection.
@@ -114,19 +122,34 @@ fn write_state_vtu(sim: &Simulation, out: &Path, pvd: &mut PvdCollection) -> Res
     let ne = model.n_elements();
     let mut stress = vec![0.0; 6 * ne];
     let mut strain = vec![0.0; 6 * ne];
-    let mut damage = vec![0.0; ne];
+    let mut damage = vec![0.0; 11 * ne];
     let mut region = vec![0.0; ne];
     for g in &model.groups {
         let ss = g.element_strain_stress(&sim.u);
-        let dmg = g.element_damage();
+        let dmg = g.element_damage_fields();
         for (le, &e) in g.elements.iter().enumerate() {
             let e = e as usize;
             strain[6 * e..6 * e + 6].copy_from_slice(&ss[le].0);
             stress[6 * e..6 * e + 6].copy_from_slice(&ss[le].1);
-            damage[e] = dmg[le];
+            if let Some(d) = &dmg {
+                damage[11 * e..11 * e + 11].copy_from_slice(&d[le]);
+            }
             region[e] = g.region as f64;
         }
     }
+    let pick = |k: usize, n: usize| -> Vec<f64> {
+        (0..ne)
+            .flat_map(|e| damage[11 * e + k..11 * e + k + n].to_vec())
+            .collect()
+    };
+    let (d, dt, dc, kt, kc, ep) = (
+        pick(0, 1),
+        pick(1, 1),
+        pick(2, 1),
+        pick(3, 1),
+        pick(4, 1),
+        pick(5, 6),
+    );
     let flat = |f: &[[f64; 3]]| -> Vec<f64> { f.iter().flatten().copied().collect() };
     let (u, v, a) = (flat(&sim.u), flat(&sim.v), flat(&sim.a));
     let name = format!("mesh_{:06}.vtu", sim.step);
@@ -165,7 +188,32 @@ fn write_state_vtu(sim: &Simulation, out: &Path, pvd: &mut PvdCollection) -> Res
             VtuField {
                 name: "damage",
                 components: 1,
-                values: &damage,
+                values: &d,
+            },
+            VtuField {
+                name: "damage_tension",
+                components: 1,
+                values: &dt,
+            },
+            VtuField {
+                name: "damage_compression",
+                components: 1,
+                values: &dc,
+            },
+            VtuField {
+                name: "kappa_tension",
+                components: 1,
+                values: &kt,
+            },
+            VtuField {
+                name: "kappa_compression",
+                components: 1,
+                values: &kc,
+            },
+            VtuField {
+                name: "plastic_strain",
+                components: 6,
+                values: &ep,
             },
             VtuField {
                 name: "region",
@@ -183,12 +231,12 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
     std::fs::create_dir_all(out).map_err(|e| DcfmError::io(out.display().to_string(), e))?;
     let label = case.file.display().to_string();
     let title = case.title.clone();
-    let header = history_header(&case.output);
     let end = case.end;
     let dt = case.dt;
     let output = case.output.clone();
     let total_steps = (end / dt).ceil() as u64;
     let mut sim = Simulation::new(case.model, dt, case.safety)?;
+    let header = history_header(&output, &sim);
     let checkpoint = out.join("checkpoint.bin");
     let mut resumed_from = None;
     if opts.resume && checkpoint.exists() {

@@ -7,6 +7,7 @@
 //! Data flow: case file → [`model::Model`] → static stage → dynamic stage
 //! ([`stage::dynamic`]) → outputs. See `docs/ARCHITECTURE.md`.
 
+pub mod contact;
 pub mod error;
 pub mod element;
 pub mod material;

@@ -82,6 +82,11 @@ pub struct InterfaceSpec {
     /// Pairing / penetration tolerance as a fraction of the shortest interface face edge.
     #[serde(default = "default_tolerance")]
     pub tolerance: f64,
+    /// Paired mode: allow nodes of surface b without a partner (surface b extends beyond
+    /// surface a, e.g. rock faces around a lining). Off by default: every node of both
+    /// surfaces must then be paired.
+    #[serde(default)]
+    pub b_may_extend: bool,
 }
 
 fn default_slip_fraction() -> f64 {
@@ -114,6 +119,7 @@ impl InterfaceSpec {
             slip_threshold: None,
             slip_threshold_fraction: default_slip_fraction(),
             tolerance: default_tolerance(),
+            b_may_extend: false,
         }
     }
 }

@@ -402,12 +402,17 @@ fn pair_nodes(
         s.partner = gb.nodes[j];
         s.gap = dot(sub(mesh.coords[s.partner as usize], x), s.normal);
     }
-    if let Some(j) = used.iter().position(|&u| u == NONE) {
+    if let Some(j) = used
+        .iter()
+        .position(|&u| u == NONE)
+        .filter(|_| !spec.b_may_extend)
+    {
         let node = gb.nodes[j];
         return Err(err(
             spec,
             format!(
-                "node {node} of surface_b at {:?} has no node of surface_a within {tol:.3e} m",
+                "node {node} of surface_b at {:?} has no node of surface_a within {tol:.3e} m \
+                 (set b_may_extend = true if surface b is meant to be larger)",
                 mesh.coords[node as usize]
             ),
         ));

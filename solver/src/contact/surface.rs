@@ -118,6 +118,29 @@ pub fn solve_group(
         .collect())
 }
 
+/// Forces on the four face nodes from the force `r` on the contact node: −φⱼ r. They sum
+/// to −r and are statically equivalent to −r applied at x_c = Σ φⱼ xⱼ.
+#[inline]
+pub fn distribute(phi: &[f64; 4], r: [f64; 3]) -> [[f64; 3]; 4] {
+    phi.map(|p| scale(-p, r))
+}
+
+/// Whether the closest point found by [`project_on_face`] is a contact candidate: within
+/// `capture` and, when it was clamped to an edge, with an in-plane offset of at most
+/// `edge_tol` (so that a node that has slid off the edge of surface b is free).
+#[inline]
+fn accept(x: &[[f64; 3]; 4], p: [f64; 3], xi: f64, eta: f64, capture: f64, edge_tol: f64) -> bool {
+    let (q, _, _) = face_point(x, xi, eta);
+    let d = sub(p, q);
+    if norm(d) > capture {
+        return false;
+    }
+    match face_normal(x, xi, eta) {
+        Some(nb) => norm(tangential(d, nb)) <= edge_tol,
+        None => false,
+    }
+}
+
 fn new_active(
     slave: usize,
     node: u32,
@@ -338,6 +361,7 @@ pub(super) fn solve(
     }
     let hcell = hmax.max(iface.b_face_size).max(f64::MIN_POSITIVE);
     let capture = 0.5 * hcell;
+    let edge_tol = 1e-2 * hcell;
     for list in s.grid.values_mut() {
         list.clear();
     }
@@ -366,7 +390,9 @@ pub(super) fn solve(
             for &fi in list {
                 let x = iface.b_faces[fi as usize].map(cur);
                 let (xi, eta, dist) = project_on_face(&x, p);
-                if dist > capture || best.is_some_and(|(bd, _, _, _)| dist >= bd) {
+                if best.is_some_and(|(bd, _, _, _)| dist >= bd)
+                    || !accept(&x, p, xi, eta, capture, edge_tol)
+                {
                     continue;
                 }
                 match face_normal(&x, xi, eta) {
@@ -439,9 +465,9 @@ pub(super) fn solve(
         let i = a.node as usize;
         r[i] = add(r[i], a.r);
         s.touched.push(a.node);
-        for j in 0..4 {
+        for (j, f) in distribute(&a.phi, a.r).into_iter().enumerate() {
             let k = a.face[j] as usize;
-            r[k] = axpy(r[k], -a.phi[j], a.r);
+            r[k] = add(r[k], f);
             s.touched.push(a.face[j]);
         }
     }

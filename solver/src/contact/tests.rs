@@ -386,3 +386,151 @@ fn inconsistent_normals_are_reported() {
     let msg = contact_message(e);
     assert!(msg.contains("inconsistent normals at node"), "{msg}");
 }
+
+/// W6 block on an incline (frame along the incline: x down-slope, z normal): the block's
+/// bottom nodes (surface a, 1000 kg shared by four nodes, no elastic coupling needed since
+/// they move alike) on a fixed base. Returns (x displacement after `t_end`, friction work,
+/// kinetic energy, gravity work, final state counts of pairs and surface nodes).
+fn incline_run(
+    mesh: &Mesh,
+    spec: InterfaceSpec,
+    theta_deg: f64,
+    t_end: f64,
+) -> (f64, f64, f64, f64, ([usize; 4], [usize; 4])) {
+    let g = 9.81;
+    let th = theta_deg.to_radians();
+    let mut sys = ContactSystem::new(mesh, std::slice::from_ref(&spec), "w6.toml").unwrap();
+    let n = mesh.n_nodes();
+    let slaves: Vec<u32> = sys.pairs(0).iter().map(|p| p.0).collect();
+    assert_eq!(slaves.len(), 4);
+    let mut w = vec![0.0; n];
+    let m_node = 250.0;
+    for &k in &slaves {
+        w[k as usize] = 1.0 / m_node;
+    }
+    let f = [m_node * g * th.sin(), 0.0, -m_node * g * th.cos()];
+    let dt = 1e-3;
+    let steps = (t_end / dt).round() as u64;
+    let mut u = vec![[0.0; 3]; n];
+    let mut v = vec![[0.0; 3]; n];
+    let mut up = u.clone();
+    let mut vp = v.clone();
+    let mut r = vec![[0.0; 3]; n];
+    let mut w_grav = 0.0;
+    for step in 0..steps {
+        for &k in sys.touched_nodes() {
+            r[k as usize] = [0.0; 3];
+        }
+        for k in 0..n {
+            let fk = if w[k] > 0.0 { f } else { [0.0; 3] };
+            vp[k] = geom::axpy(v[k], dt * w[k], fk);
+            up[k] = geom::axpy(u[k], dt, vp[k]);
+        }
+        let inp = ContactStepInput {
+            step,
+            time: step as f64 * dt,
+            dt,
+            inv_mass: &w,
+            coords: &mesh.coords,
+            u_old: &u,
+            u_pred: &up,
+            v_pred: &vp,
+        };
+        sys.compute(&inp, &mut r).unwrap();
+        for k in 0..n {
+            let un = geom::axpy(up[k], dt * dt * w[k], r[k]);
+            if w[k] > 0.0 {
+                w_grav += geom::dot(f, geom::sub(un, u[k]));
+            }
+            u[k] = un;
+            v[k] = geom::axpy(vp[k], dt * w[k], r[k]);
+        }
+    }
+    // Kinetic energy from the mid-step velocities averaged to the end time.
+    let mut ke = 0.0;
+    for &k in &slaves {
+        let vv = v[k as usize];
+        ke += 0.5 * m_node * geom::dot(vv, vv);
+    }
+    let x = slaves.iter().map(|&k| u[k as usize][0]).sum::<f64>() / 4.0;
+    (x, sys.friction_work(), ke, w_grav, sys.state_counts(0))
+}
+
+fn within(got: f64, want: f64, rel: f64) -> bool {
+    (got - want).abs() <= rel * want.abs()
+}
+
+#[test]
+fn w6_incline_point_to_point() {
+    let mesh = two_blocks();
+    // surface a = the block's bottom (top region), normal −z; base fixed.
+    let mut spec = InterfaceSpec::new("w6", "top-base", "base-top", 0.6, 0.4, 0.0);
+    spec.slip_threshold = Some(100.0);
+    let (x, _, _, _, _) = incline_run(&mesh, spec.clone(), 30.0, 1.0);
+    assert!(x.abs() < 1e-12, "30°, μs = 0.6 must stick: x = {x}");
+    spec.mu_s = 0.5;
+    let (x, wf, ke, wg, counts) = incline_run(&mesh, spec.clone(), 30.0, 1.0);
+    assert!(within(x, 0.7534, 0.01), "x = {x}");
+    assert!(within(wf, 2560.12, 0.01), "friction {wf}");
+    assert!(within(ke, 1135.10, 0.01), "kinetic {ke}");
+    assert!(within(wg, 3695.22, 0.01), "gravity {wg}");
+    assert!((wg - wf - ke).abs() < 0.01 * wg, "balance {wg} {wf} {ke}");
+    assert_eq!(counts.0, [0, 0, 4, 0]);
+    spec.mu_s = 0.3;
+    spec.mu_d = 0.25;
+    let (x, ..) = incline_run(&mesh, spec, 20.0, 1.0);
+    assert!(within(x, 0.5 * 1.0506, 0.01), "x = {x}");
+}
+
+/// Base 4 × 1 elements (x ∈ [0, 4]), block 1 × 1 at x ∈ [0.25, 1.25] resting on it:
+/// nodes do not coincide; the block slides across face boundaries.
+#[test]
+fn w6_incline_point_to_surface() {
+    let mesh = BoxMeshSpec {
+        blocks: vec![
+            block("base", [0.0; 3], [4.0, 1.0, 1.0], [4, 1, 1]),
+            block("top", [0.25, 0.0, 1.0], [1.0, 1.0, 1.0], [1, 1, 1]),
+        ],
+        split: vec![],
+        merge_tolerance: 1e-6,
+    }
+    .build("w6.toml")
+    .unwrap();
+    let mut spec = InterfaceSpec::new("w6", "top.zmin", "base.zmax", 0.5, 0.4, 0.0);
+    spec.mode = ContactMode::Surface;
+    let (x, wf, ke, wg, counts) = incline_run(&mesh, spec.clone(), 30.0, 1.0);
+    assert!(within(x, 0.7534, 0.01), "x = {x}");
+    assert!(within(wf, 2560.12, 0.01), "friction {wf}");
+    assert!(within(ke, 1135.10, 0.01), "kinetic {ke}");
+    assert!((wg - wf - ke).abs() < 0.01 * wg, "balance {wg} {wf} {ke}");
+    assert_eq!(counts.1, [0, 0, 4, 0]);
+    spec.mu_s = 0.6;
+    let (x, ..) = incline_run(&mesh, spec, 30.0, 0.5);
+    assert!(x.abs() < 1e-9, "30°, μs = 0.6 must stick: x = {x}");
+}
+
+/// Paired block that slides past its threshold continues in point-to-surface contact over
+/// a larger base (surface b extends beyond surface a).
+#[test]
+fn w6_pairs_switch_to_surface_after_large_slip() {
+    let mesh = BoxMeshSpec {
+        blocks: vec![
+            block("base", [0.0; 3], [4.0, 1.0, 1.0], [4, 1, 1]),
+            block("top", [0.0, 0.0, 1.0], [1.0, 1.0, 1.0], [1, 1, 1]),
+        ],
+        split: vec![["base".into(), "top".into()]],
+        merge_tolerance: 1e-6,
+    }
+    .build("w6.toml")
+    .unwrap();
+    let mut spec = InterfaceSpec::new("w6", "top.zmin", "base.zmax", 0.5, 0.4, 0.0);
+    let e = ContactSystem::new(&mesh, std::slice::from_ref(&spec), "w6.toml").unwrap_err();
+    assert!(e.to_string().contains("b_may_extend"), "{e}");
+    spec.b_may_extend = true;
+    spec.slip_threshold = Some(0.05);
+    let (x, wf, ke, _, counts) = incline_run(&mesh, spec, 30.0, 1.0);
+    assert!(within(x, 0.7534, 0.01), "x = {x}");
+    assert!(within(wf, 2560.12, 0.01), "friction {wf}");
+    assert!(within(ke, 1135.10, 0.01), "kinetic {ke}");
+    assert_eq!(counts, ([0; 4], [0, 0, 4, 0]));
+}

@@ -99,13 +99,20 @@ pub struct PairOutcome {
 pub fn solve_pair(state: PairState, p: &PairParams, inp: &PairInput) -> PairOutcome {
     let n = inp.n;
     let k = 1.0 / (inp.w_sum * inp.dt * inp.dt);
-    let gap_pred = dot(inp.rel_pred, n);
+    let bonded = state == PairState::Bonded;
+    // Normal target after the step: zero gap (eq. (5)); a gap or penetration already
+    // present at tⁿ — only possible where another constraint moved a node of the pair
+    // (a node shared with a second interface or with point-to-surface contact) — is held
+    // by a bond, and a penetration is held, not pushed out, by a contact without bond, so
+    // that the pair forces never do positive work.
+    let gap_old = dot(inp.rel_old, n);
+    let target = if bonded { gap_old } else { gap_old.min(0.0) };
+    let gap_pred = dot(inp.rel_pred, n) - target;
     let incr = sub(inp.rel_pred, inp.rel_old);
     let d2 = tangential(incr, n);
     let lambda = -k * gap_pred;
     let t = scale(k, d2);
     let t_mag = norm(t);
-    let bonded = state == PairState::Bonded;
     let separated = PairOutcome {
         r: [0.0; 3],
         state: PairState::Separated,

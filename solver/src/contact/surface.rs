@@ -13,6 +13,8 @@
 //! shared by the faces of i and k. With the contact normal nᵢ (from i towards b: minus the
 //! outward normal of the face at c, configuration at tⁿ):
 //!
+//! - ḡᵢ = d̄ᵢ·nᵢ − min(0, dᵢⁿ·nᵢ): the predicted gap, less any penetration present at tⁿ
+//!   (held, not pushed out, so that contact forces never do positive work);
 //! - stick (3 unknowns Rᵢ): (H R)ᵢ = ḡᵢ nᵢ + Pₜ(d̄ᵢ − dᵢⁿ) — eq. (20) for the normal part
 //!   with Δ₃ = ḡᵢ nᵢ, eq. (21) for the tangential part with Δ₄ = Pₜ(d̄ᵢ − dᵢⁿ);
 //! - slide (1 unknown λᵢ, Rᵢ = λᵢ(−nᵢ + μd t̂ᵢ), eq. (13)): nᵢ·(H R)ᵢ = ḡᵢ, the tangential
@@ -22,7 +24,10 @@
 //! The system is assembled as a sparse matrix and solved with faer's sparse LU. Starting
 //! with every closed node sticking, nodes with λ < 0 are released and sticking nodes with
 //! |T| > μs λ switch to sliding (t̂ = T/|T| of that solve); the loop repeats until nothing
-//! changes. Switches are one-way within a step, so it ends after at most 2m + 1 solves.
+//! changes; then open nodes that their neighbours' forces (through shared face nodes) would
+//! push into surface b are added as sticking and the loop goes on. Every switch happens at
+//! most once per node and step (open → stick, stick → slide, contact → released in
+//! tension, never re-added), so it ends after at most 3m + 2 solves.
 
 use std::collections::HashMap;
 
@@ -33,6 +38,7 @@ use super::geom::{
     add, axpy, dot, face_normal, face_point, face_shape, norm, project_on_face, scale, sub,
     tangential,
 };
+use super::pair::{solve_pair, PairInput, PairParams};
 use super::{ContactStepInput, Interface, PairState, NONE};
 use crate::error::{DcfmError, Result};
 
@@ -69,6 +75,16 @@ struct Active {
     dir: [f64; 3],
     offset: usize,
     r: [f64; 3],
+    /// Released in tension during this step (never re-activated in the same step).
+    released: bool,
+    /// Nothing can move this node (H diagonal zero): no force.
+    fixed: bool,
+    /// (H R)ᵢ of the last solve.
+    hr: [f64; 3],
+    /// Went back from sliding to sticking in this step (at most once).
+    restuck: bool,
+    /// Has slid in this step.
+    slid: bool,
 }
 
 /// One contact group given directly: the pure kernel behind [`solve`], public for tests and
@@ -150,7 +166,10 @@ fn new_active(
     dbar: [f64; 3],
     dn: [f64; 3],
 ) -> Active {
-    let gbar = dot(dbar, n);
+    // Gap to close: down to zero, or, where the node already penetrates at tⁿ (a change of
+    // contact face, the coupling of neighbours), down to that penetration: it is held, not
+    // pushed out, so that contact forces never do positive work.
+    let gbar = dot(dbar, n) - dot(dn, n).min(0.0);
     let rhs = axpy(tangential(sub(dbar, dn), n), gbar, n);
     Active {
         slave,
@@ -165,6 +184,11 @@ fn new_active(
         dir: [0.0; 3],
         offset: 0,
         r: [0.0; 3],
+        released: false,
+        fixed: false,
+        hr: [0.0; 3],
+        restuck: false,
+        slid: false,
     }
 }
 
@@ -227,15 +251,119 @@ fn solve_active(
     w_slave: &dyn Fn(usize) -> f64,
     w_node: &dyn Fn(u32) -> f64,
 ) -> std::result::Result<usize, String> {
+    let iters = active_set(s, dt, mu_s, mu_d, w_slave, w_node)?;
+    polish(s, dt, mu_s, mu_d)?;
+    Ok(iters)
+}
+
+/// Projected Gauss–Seidel sweeps from the active-set solution until every node satisfies
+/// its own contact law given the forces of the others (the same rules as a pair, with
+/// Hᵢᵢ/Δt² in place of w_a + w_b). Where the active-set solution is consistent — the usual
+/// case — the first sweep changes nothing. Where coupled friction made it inconsistent
+/// (a sliding node whose friction would reverse its own slip) the sweeps settle it, so that
+/// every sliding node ends with T along its slip and the forces do no positive work.
+fn polish(s: &mut Scratch, dt: f64, mu_s: f64, mu_d: f64) -> std::result::Result<(), String> {
+    const MAX_SWEEPS: usize = 2000;
+    let m = s.active.len();
+    // Row ranges of the sorted H list.
+    let mut row = vec![0usize; m + 1];
+    for &(i, _, _) in &s.h {
+        row[i + 1] += 1;
+    }
+    for i in 0..m {
+        row[i + 1] += row[i];
+    }
+    let params = PairParams {
+        mu_s,
+        mu_d,
+        shear_capacity: 0.0,
+        tensile_capacity: 0.0,
+    };
+    // A node that slid in this step keeps the kinetic coefficient for the rest of the
+    // step: it sticks again only inside the μd cone (static/kinetic switching between
+    // coupled nodes otherwise has no fixed point).
+    let kinetic = PairParams {
+        mu_s: mu_d,
+        ..params
+    };
+    let fmax = s.active.iter().map(|a| norm(a.r)).fold(0.0, f64::max);
+    for _sweep in 0..MAX_SWEEPS {
+        let mut change: f64 = 0.0;
+        let mut scale_f = fmax;
+        for i in 0..m {
+            if s.active[i].fixed {
+                continue;
+            }
+            let mut hii = 0.0;
+            let mut coupled = [0.0; 3];
+            for &(_, k, h) in &s.h[row[i]..row[i + 1]] {
+                if k == i {
+                    hii = h;
+                } else {
+                    coupled = axpy(coupled, h, s.active[k].r);
+                }
+            }
+            let a = &s.active[i];
+            if a.released || (a.mode == Mode::Open && a.gbar - dot(coupled, a.n) >= 0.0) {
+                continue;
+            }
+            // Local problem: relative position after the step d = d̃ − Hᵢᵢ Rᵢ.
+            let target = dot(a.dn, a.n).min(0.0);
+            let dtilde = sub(axpy(a.rhs, target, a.n), coupled); // = P_t(d̄ − dⁿ) + (d̄·n) n − Σ H R
+            let dtilde = add(dtilde, tangential(a.dn, a.n));
+            let out = solve_pair(
+                PairState::Stick,
+                if a.slid { &kinetic } else { &params },
+                &PairInput {
+                    n: a.n,
+                    w_sum: hii / (dt * dt),
+                    dt,
+                    rel_pred: dtilde,
+                    rel_old: a.dn,
+                },
+            );
+            let a = &mut s.active[i];
+            change = change.max(norm(sub(out.r, a.r)));
+            scale_f = scale_f.max(norm(out.r));
+            a.r = out.r;
+            a.mode = match out.state {
+                PairState::Sliding => {
+                    a.slid = true;
+                    Mode::Slide
+                }
+                PairState::Separated => Mode::Open,
+                _ => Mode::Stick,
+            };
+        }
+        if change <= 1e-12 * scale_f.max(f64::MIN_POSITIVE) {
+            return Ok(());
+        }
+    }
+    Err(format!(
+        "friction of {m} coupled nodes did not settle in {MAX_SWEEPS} Gauss–Seidel sweeps"
+    ))
+}
+
+fn active_set(
+    s: &mut Scratch,
+    dt: f64,
+    mu_s: f64,
+    mu_d: f64,
+    w_slave: &dyn Fn(usize) -> f64,
+    w_node: &dyn Fn(u32) -> f64,
+) -> std::result::Result<usize, String> {
     let m = s.active.len();
     // Nodes that nothing can move get no force.
     assemble_h(s, dt * dt, w_slave, w_node);
     for &(i, k, h) in &s.h {
         if i == k && h <= 0.0 {
             s.active[i].mode = Mode::Open;
+            s.active[i].fixed = true;
         }
     }
-    let max_iter = 2 * m + 2;
+    const MAX_DIR_UPDATES: usize = 50;
+    let max_iter = 5 * m + 2 + MAX_DIR_UPDATES;
+    let mut dir_updates = 0;
     for iter in 1..=max_iter {
         let mut size = 0;
         for a in s.active.iter_mut() {
@@ -313,6 +441,7 @@ fn solve_active(
             if lambda < 0.0 {
                 a.mode = Mode::Open;
                 a.r = [0.0; 3];
+                a.released = true;
                 changed = true;
                 continue;
             }
@@ -321,14 +450,68 @@ fn solve_active(
                 let tm = norm(t);
                 if tm > mu_s * lambda * (1.0 + 1e-12) {
                     a.mode = Mode::Slide;
+                    a.slid = true;
                     a.dir = axpy(scale(-1.0, a.n), mu_d / tm, t);
                     changed = true;
                 }
             }
         }
-        if !changed {
-            return Ok(iter);
+        if changed {
+            continue;
         }
+        // Open nodes that the forces of their neighbours (through shared face nodes) would
+        // push into surface b come into contact.
+        for a in s.active.iter_mut() {
+            a.hr = [0.0; 3];
+        }
+        for &(i, k, h) in &s.h {
+            let rk = s.active[k].r;
+            s.active[i].hr = axpy(s.active[i].hr, h, rk);
+        }
+        for a in s.active.iter_mut() {
+            if a.mode == Mode::Open && !a.released && !a.fixed && a.gbar - dot(a.hr, a.n) < 0.0 {
+                a.mode = Mode::Stick;
+                changed = true;
+            }
+        }
+        if changed {
+            continue;
+        }
+        // Sliding nodes coupled through shared face nodes: the friction force must follow
+        // the slip that results (eq. (13): T along the relative motion of the surface, so
+        // that it dissipates). The tangential remainder of the stick system, rhs − H R,
+        // is that slip; re-aim T where it turned and solve again.
+        if dir_updates < MAX_DIR_UPDATES {
+            for a in s.active.iter_mut() {
+                if a.mode != Mode::Slide {
+                    continue;
+                }
+                let slip = tangential(sub(a.rhs, a.hr), a.n);
+                let l = norm(slip);
+                if l <= 1e-14 * norm(a.rhs) {
+                    continue;
+                }
+                let t_old = tangential(a.dir, a.n);
+                let t_old_l = norm(t_old);
+                if dot(slip, t_old) < 0.0 && !a.restuck {
+                    // The friction force reverses the slip: friction can hold this node.
+                    a.mode = Mode::Stick;
+                    a.restuck = true;
+                    changed = true;
+                    continue;
+                }
+                let t_new = scale(1.0 / l, slip);
+                if t_old_l == 0.0 || norm(sub(t_new, scale(1.0 / t_old_l, t_old))) > 1e-6 {
+                    a.dir = axpy(scale(-1.0, a.n), mu_d, t_new);
+                    changed = true;
+                }
+            }
+            if changed {
+                dir_updates += 1;
+                continue;
+            }
+        }
+        return Ok(iter);
     }
     Err(format!(
         "active set did not settle in {max_iter} solves ({m} nodes)"
@@ -427,17 +610,18 @@ pub(super) fn solve(
         let dbar = sub(cbar, pred(sl.node));
         sl.face = fi;
         sl.xi = [xi, eta];
-        let a = new_active(si, sl.node, face, phi, n, dbar, dn);
-        if a.mode == Mode::Open {
+        s.active
+            .push(new_active(si, sl.node, face, phi, n, dbar, dn));
+    }
+    if s.active.iter().all(|a| a.mode == Mode::Open) {
+        for a in &s.active {
+            let sl = &mut iface.slaves[a.slave];
             sl.state = PairState::Separated;
             sl.gap = a.gbar;
             sl.normal_force = 0.0;
             sl.tangential = [0.0; 3];
-            continue;
+            sl.slip = add(sl.slip, tangential(sub(a.rhs, scale(a.gbar, a.n)), a.n));
         }
-        s.active.push(a);
-    }
-    if s.active.is_empty() {
         return Ok(());
     }
     let slaves = &iface.slaves;

@@ -13,6 +13,7 @@ use dcfm::contact::{
 };
 use dcfm::mesh::{BlockSpec, BoxMeshSpec};
 use proptest::prelude::*;
+use std::hint::black_box;
 
 const STATES: [PairState; 4] = [
     PairState::Bonded,
@@ -453,4 +454,95 @@ proptest! {
             prop_assert!(norm(m) <= 1e-12 * fmax * 4.0);
         }
     }
+}
+
+/// Counts heap allocations of the current thread (other test threads do not interfere).
+mod counting {
+    use std::alloc::{GlobalAlloc, Layout, System};
+    use std::cell::Cell;
+
+    thread_local! {
+        pub static COUNT: Cell<usize> = const { Cell::new(0) };
+    }
+
+    pub struct Counting;
+
+    unsafe impl GlobalAlloc for Counting {
+        unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
+            let _ = COUNT.try_with(|c| c.set(c.get() + 1));
+            unsafe { System.alloc(layout) }
+        }
+        unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {
+            unsafe { System.dealloc(ptr, layout) }
+        }
+        unsafe fn realloc(&self, ptr: *mut u8, layout: Layout, new_size: usize) -> *mut u8 {
+            let _ = COUNT.try_with(|c| c.set(c.get() + 1));
+            unsafe { System.realloc(ptr, layout, new_size) }
+        }
+    }
+}
+
+#[global_allocator]
+static ALLOC: counting::Counting = counting::Counting;
+
+/// The point-to-point path of `compute()` allocates nothing per step.
+#[test]
+fn point_to_point_step_does_not_allocate() {
+    let mesh = BoxMeshSpec {
+        blocks: vec![
+            block("base", [0.0; 3], [4.0, 4.0, 1.0], [4, 4, 1]),
+            block("top", [0.0, 0.0, 1.0], [4.0, 4.0, 1.0], [4, 4, 1]),
+        ],
+        split: vec![["base".into(), "top".into()]],
+        merge_tolerance: 1e-6,
+    }
+    .build("p.toml")
+    .unwrap();
+    let spec = InterfaceSpec::new("p", "base-top", "top-base", 0.5, 0.4, 10.0);
+    let mut sys = ContactSystem::new(&mesh, &[spec], "p.toml").unwrap();
+    let n = mesh.n_nodes();
+    let w = vec![1.0; n];
+    let zero = vec![[0.0; 3]; n];
+    let mut r = vec![[0.0; 3]; n];
+    let loads: Vec<Vec<[f64; 3]>> = (0..6)
+        .map(|s| {
+            (0..n)
+                .map(|k| {
+                    [
+                        ((k + s) % 5) as f64 * 20.0 - 40.0,
+                        ((k * 3 + s) % 7) as f64 * 10.0 - 30.0,
+                        ((k + 2 * s) % 3) as f64 * 30.0 - 20.0,
+                    ]
+                })
+                .collect()
+        })
+        .collect();
+    let preds: Vec<Vec<[f64; 3]>> = loads
+        .iter()
+        .map(|l| l.iter().map(|f| scale(1e-6, *f)).collect())
+        .collect();
+    // The counter sees this thread's allocations.
+    let c0 = counting::COUNT.with(|c| c.get());
+    let probe = black_box(vec![1u8; 64]);
+    assert!(counting::COUNT.with(|c| c.get()) > c0 && probe.len() == 64);
+    let before = counting::COUNT.with(|c| c.get());
+    for (s, up) in preds.iter().enumerate() {
+        for &k in sys.touched_nodes() {
+            r[k as usize] = [0.0; 3];
+        }
+        let inp = ContactStepInput {
+            step: s as u64,
+            time: 0.0,
+            dt: 1e-3,
+            inv_mass: &w,
+            coords: &mesh.coords,
+            u_old: &zero,
+            u_pred: up,
+            v_pred: &zero,
+        };
+        sys.compute(&inp, &mut r).unwrap();
+    }
+    let after = counting::COUNT.with(|c| c.get());
+    assert_eq!(after - before, 0, "allocations in the point-to-point path");
+    assert!(!sys.touched_nodes().is_empty());
 }

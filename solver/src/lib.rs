@@ -13,6 +13,7 @@
 
 pub mod boundary;
 pub mod case;
+pub mod contact;
 pub mod element;
 pub mod error;
 pub mod load;

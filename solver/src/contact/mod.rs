@@ -1,0 +1,519 @@
+//! Dynamic contact force method with bond-slip (Yang, Chen & Xiao 2014, §2, eqs. (5)–(22)).
+//!
+//! An interface joins two face sets: `surface_a` and `surface_b`. Its nodes are, at first,
+//! coincident pairs (point-to-point contact, eqs. (5)–(15), [`pair`]); a node of surface a
+//! whose slip exceeds a threshold leaves its pair and contacts the faces of surface b
+//! (point-to-surface contact, eqs. (16)–(22), [`surface`]). Interfaces in
+//! [`ContactMode::Surface`] start in point-to-surface contact.
+//!
+//! Integration form (leapfrog central difference): the driver computes the predictor
+//! Ū^{n+1} = Uⁿ + Δt V̄^{n+½} for every node as if no contact existed, calls
+//! [`ContactSystem::compute`], then corrects U^{n+1} = Ū^{n+1} + Δt² w R and
+//! V^{n+½} = V̄^{n+½} + Δt w R with w = 1/M (0 for a fully constrained node).
+//!
+//! One step of [`ContactSystem::compute`]:
+//! 1. for each interface, every pair still in point-to-point contact: trial stick force
+//!    (6)–(9), state checks (12)–(15), forces +R on node a and −R on node b;
+//! 2. for each interface with nodes in point-to-surface contact: search the faces of
+//!    surface b (grid buckets over the configuration at tⁿ), bilinear projection, the
+//!    coupled system (17)–(21) for the nodes whose predicted gap is closed, solved
+//!    with a sparse LU (faer), sliding and separation switches until consistent;
+//! 3. the work of the contact forces over the step, accumulated as dissipation.
+//!
+//! Forces of earlier pairs and interfaces are included in the predictor of later ones
+//! (Gauss–Seidel order: interfaces in input order, pairs before surfaces), so a node
+//! shared by two interfaces is treated consistently and deterministically.
+//! See `docs/contact.md` for the equations, the sign conventions and the choices made
+//! where the paper is terse.
+
+pub mod geom;
+pub mod pair;
+mod setup;
+pub mod surface;
+
+use serde::Deserialize;
+
+use crate::error::{DcfmError, Result};
+use crate::mesh::Mesh;
+use geom::{axpy, dot, norm, sub, tangential};
+pub use pair::{solve_pair, PairInput, PairOutcome, PairParams, PairState};
+
+/// How an interface starts.
+#[derive(Clone, Copy, Debug, Deserialize, PartialEq, Eq, Default)]
+#[serde(rename_all = "lowercase")]
+pub enum ContactMode {
+    /// Coincident node pairs, bonded with cohesion (the paper's initial state); a pair
+    /// switches to point-to-surface contact once its slip exceeds the threshold.
+    #[default]
+    Paired,
+    /// Every node of surface a in point-to-surface contact with surface b from the start,
+    /// without cohesion; nodes need not coincide.
+    Surface,
+}
+
+/// One contact interface of the case file.
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct InterfaceSpec {
+    /// Interface name (for messages and outputs).
+    pub name: String,
+    /// Face set on one side; its outward normals define the contact normal.
+    pub surface_a: String,
+    /// Face set on the other side.
+    pub surface_b: String,
+    /// Static friction coefficient μs ≥ 0.
+    pub mu_s: f64,
+    /// Kinetic friction coefficient, 0 ≤ μd ≤ μs.
+    pub mu_d: f64,
+    /// Cohesion c (Pa): shear capacity cA of a bonded pair, lost at first slide or separation.
+    pub cohesion: f64,
+    /// Tensile strength (Pa) of eq. (14); defaults to the cohesion.
+    #[serde(default)]
+    pub tensile_strength: Option<f64>,
+    /// Paired (default) or surface.
+    #[serde(default)]
+    pub mode: ContactMode,
+    /// Slip (m) after which a pair leaves point-to-point contact; overrides the fraction.
+    #[serde(default)]
+    pub slip_threshold: Option<f64>,
+    /// Slip threshold as a fraction of the local element size √(mean adjacent face area).
+    #[serde(default = "default_slip_fraction")]
+    pub slip_threshold_fraction: f64,
+    /// Pairing / penetration tolerance as a fraction of the shortest interface face edge.
+    #[serde(default = "default_tolerance")]
+    pub tolerance: f64,
+    /// Paired mode: allow nodes of surface b without a partner (surface b extends beyond
+    /// surface a, e.g. rock faces around a lining). Off by default: every node of both
+    /// surfaces must then be paired.
+    #[serde(default)]
+    pub b_may_extend: bool,
+}
+
+fn default_slip_fraction() -> f64 {
+    0.5
+}
+
+fn default_tolerance() -> f64 {
+    1e-4
+}
+
+impl InterfaceSpec {
+    /// A paired interface with the default slip threshold and tolerance.
+    pub fn new(
+        name: &str,
+        surface_a: &str,
+        surface_b: &str,
+        mu_s: f64,
+        mu_d: f64,
+        cohesion: f64,
+    ) -> Self {
+        InterfaceSpec {
+            name: name.into(),
+            surface_a: surface_a.into(),
+            surface_b: surface_b.into(),
+            mu_s,
+            mu_d,
+            cohesion,
+            tensile_strength: None,
+            mode: ContactMode::Paired,
+            slip_threshold: None,
+            slip_threshold_fraction: default_slip_fraction(),
+            tolerance: default_tolerance(),
+            b_may_extend: false,
+        }
+    }
+}
+
+/// Everything [`ContactSystem::compute`] reads for one step (all slices of length n_nodes).
+#[derive(Clone, Copy, Debug)]
+pub struct ContactStepInput<'a> {
+    /// Step number n.
+    pub step: u64,
+    /// Time tⁿ.
+    pub time: f64,
+    /// Time step Δt.
+    pub dt: f64,
+    /// Inverse lumped masses w = 1/M (0 for fully constrained nodes).
+    pub inv_mass: &'a [f64],
+    /// Reference coordinates.
+    pub coords: &'a [[f64; 3]],
+    /// Displacements Uⁿ.
+    pub u_old: &'a [[f64; 3]],
+    /// Predicted displacements Ū^{n+1} (no contact).
+    pub u_pred: &'a [[f64; 3]],
+    /// Predicted velocities V̄^{n+½} (no contact).
+    pub v_pred: &'a [[f64; 3]],
+}
+
+/// Marker for "no node / no face".
+pub(crate) const NONE: u32 = u32::MAX;
+
+/// One node of surface a with its contact record.
+#[derive(Clone, Debug)]
+pub(crate) struct SlaveNode {
+    pub node: u32,
+    /// Paired node of surface b (NONE once in point-to-surface contact, or in surface mode).
+    pub partner: u32,
+    /// Control area A (exact bilinear nodal area on surface a).
+    pub area: f64,
+    /// Unit node normal of surface a (reference configuration).
+    pub normal: [f64; 3],
+    /// Slip after which the pair switches to point-to-surface.
+    pub slip_threshold: f64,
+    /// Point-to-surface contact.
+    pub surface: bool,
+    pub state: PairState,
+    /// Normal gap after the correction (m), positive when open.
+    pub gap: f64,
+    /// Net relative tangential displacement of the opposite side with respect to this node.
+    pub slip: [f64; 3],
+    /// Path length of sliding (m).
+    pub acc_slip: f64,
+    /// Normal force λ (N), compression positive.
+    pub normal_force: f64,
+    /// Tangential force on this node (N).
+    pub tangential: [f64; 3],
+    /// Face of surface b (index into `Interface::b_faces`) in point-to-surface contact.
+    pub face: u32,
+    pub xi: [f64; 2],
+}
+
+/// Parameters and geometry of one interface.
+#[derive(Clone, Debug)]
+pub(crate) struct Interface {
+    pub name: String,
+    pub mu_s: f64,
+    pub mu_d: f64,
+    pub cohesion: f64,
+    pub tensile: f64,
+    pub slaves: Vec<SlaveNode>,
+    /// Faces of surface b (node numbers, counter-clockwise from outside b).
+    pub b_faces: Vec<[u32; 4]>,
+    /// Largest diagonal of the faces of surface b (reference configuration).
+    pub b_face_size: f64,
+}
+
+/// All contact interfaces of a model and their states.
+#[derive(Clone, Debug)]
+pub struct ContactSystem {
+    interfaces: Vec<Interface>,
+    touched: Vec<u32>,
+    mark: Vec<u64>,
+    stamp: u64,
+    friction_work: f64,
+    n_nodes: usize,
+    scratch: surface::Scratch,
+}
+
+impl ContactSystem {
+    /// Set up every interface: pairing, normals, control areas and checks (see [`setup`]).
+    pub fn new(mesh: &Mesh, specs: &[InterfaceSpec], file: &str) -> Result<Self> {
+        let mut interfaces = Vec::with_capacity(specs.len());
+        for (k, spec) in specs.iter().enumerate() {
+            if specs[..k].iter().any(|s| s.name == spec.name) {
+                return Err(DcfmError::invalid(
+                    file,
+                    format!("interfaces[{k}].name"),
+                    &spec.name,
+                    "interface names must be unique",
+                ));
+            }
+            interfaces.push(setup::build_interface(mesh, spec, k, file)?);
+        }
+        let n = mesh.n_nodes();
+        let cap: usize = interfaces
+            .iter()
+            .map(|i| 2 * i.slaves.len() + 4 * i.b_faces.len())
+            .sum();
+        Ok(ContactSystem {
+            interfaces,
+            touched: Vec::with_capacity(cap.min(n)),
+            mark: vec![0; n],
+            stamp: 0,
+            friction_work: 0.0,
+            n_nodes: n,
+            scratch: surface::Scratch::default(),
+        })
+    }
+
+    /// True when the model has no interface.
+    pub fn is_empty(&self) -> bool {
+        self.interfaces.is_empty()
+    }
+
+    /// Number of interfaces.
+    pub fn len(&self) -> usize {
+        self.interfaces.len()
+    }
+
+    /// Nodes whose contact force the last [`compute`](Self::compute) wrote (sorted by first
+    /// touch, unique).
+    pub fn touched_nodes(&self) -> &[u32] {
+        &self.touched
+    }
+
+    /// Cumulative work dissipated by the contact forces: −Σ R·(U^{n+1} − Uⁿ) over all steps
+    /// (friction while sliding and the inelastic closing of gaps). Zero for sticking pairs.
+    pub fn friction_work(&self) -> f64 {
+        self.friction_work
+    }
+
+    #[inline]
+    fn touch(&mut self, node: u32) {
+        let m = &mut self.mark[node as usize];
+        if *m != self.stamp {
+            *m = self.stamp;
+            self.touched.push(node);
+        }
+    }
+
+    /// Contact forces R for one step, eqs. (5)–(22): adds R into `r` for every node it
+    /// touches (the caller zeroes the nodes of the previous call's
+    /// [`touched_nodes`](Self::touched_nodes)), updates the states. Errors name the
+    /// interface and the step when the inputs are inconsistent or a point-to-surface
+    /// solve does not settle.
+    pub fn compute(&mut self, inp: &ContactStepInput, r: &mut [[f64; 3]]) -> Result<()> {
+        let n = self.n_nodes;
+        let lens = [
+            inp.inv_mass.len(),
+            inp.coords.len(),
+            inp.u_old.len(),
+            inp.u_pred.len(),
+            inp.v_pred.len(),
+            r.len(),
+        ];
+        if lens.iter().any(|&l| l != n) {
+            return Err(DcfmError::Contact {
+                interface: "*".into(),
+                message: format!(
+                    "step {}: input lengths {lens:?} (inv_mass, coords, u_old, u_pred, v_pred, r) \
+                     differ from the {n} nodes of the mesh",
+                    inp.step
+                ),
+            });
+        }
+        if !(inp.dt.is_finite() && inp.dt > 0.0) {
+            return Err(DcfmError::Contact {
+                interface: "*".into(),
+                message: format!(
+                    "step {}: time step {} must be finite and > 0",
+                    inp.step, inp.dt
+                ),
+            });
+        }
+        self.stamp += 1;
+        self.touched.clear();
+        let dt2 = inp.dt * inp.dt;
+        let mut interfaces = std::mem::take(&mut self.interfaces);
+        let mut result = Ok(());
+        for iface in interfaces.iter_mut() {
+            self.point_to_point(iface, inp, r);
+            if iface.slaves.iter().any(|s| s.surface) {
+                let mut scratch = std::mem::take(&mut self.scratch);
+                let res = surface::solve(iface, inp, r, &mut scratch);
+                for &node in &scratch.touched {
+                    self.touch(node);
+                }
+                self.scratch = scratch;
+                if let Err(e) = res {
+                    result = Err(e);
+                    break;
+                }
+            }
+        }
+        self.interfaces = interfaces;
+        result?;
+        // Work of the contact forces over the step (dissipation is minus it).
+        let mut work = 0.0;
+        for &k in &self.touched {
+            let k = k as usize;
+            let du = axpy(
+                sub(inp.u_pred[k], inp.u_old[k]),
+                dt2 * inp.inv_mass[k],
+                r[k],
+            );
+            work += dot(r[k], du);
+        }
+        self.friction_work -= work;
+        Ok(())
+    }
+
+    /// Step 1 of [`compute`](Self::compute): every pair in point-to-point contact.
+    fn point_to_point(
+        &mut self,
+        iface: &mut Interface,
+        inp: &ContactStepInput,
+        r: &mut [[f64; 3]],
+    ) {
+        let dt2 = inp.dt * inp.dt;
+        let base = PairParams {
+            mu_s: iface.mu_s,
+            mu_d: iface.mu_d,
+            shear_capacity: 0.0,
+            tensile_capacity: 0.0,
+        };
+        for s in iface.slaves.iter_mut() {
+            if s.surface || s.partner == NONE {
+                continue;
+            }
+            let (a, b) = (s.node as usize, s.partner as usize);
+            let (wa, wb) = (inp.inv_mass[a], inp.inv_mass[b]);
+            let w_sum = wa + wb;
+            let ua = axpy(inp.u_pred[a], dt2 * wa, r[a]);
+            let ub = axpy(inp.u_pred[b], dt2 * wb, r[b]);
+            let rel_pred = sub(ub, ua);
+            let rel_old = sub(inp.u_old[b], inp.u_old[a]);
+            if w_sum <= 0.0 {
+                // Both sides fixed: nothing can move, no force is needed.
+                s.gap = dot(rel_pred, s.normal);
+                continue;
+            }
+            let params = PairParams {
+                shear_capacity: iface.cohesion * s.area,
+                tensile_capacity: iface.tensile * s.area,
+                ..base
+            };
+            let pin = PairInput {
+                n: s.normal,
+                w_sum,
+                dt: inp.dt,
+                rel_pred,
+                rel_old,
+            };
+            let out = solve_pair(s.state, &params, &pin);
+            r[a] = geom::add(r[a], out.r);
+            r[b] = sub(r[b], out.r);
+            let m = &mut self.mark;
+            for k in [s.node, s.partner] {
+                if m[k as usize] != self.stamp {
+                    m[k as usize] = self.stamp;
+                    self.touched.push(k);
+                }
+            }
+            let rel_new = axpy(rel_pred, -w_sum * dt2, out.r);
+            let dslip = tangential(sub(rel_new, rel_old), s.normal);
+            s.state = out.state;
+            s.gap = dot(rel_new, s.normal);
+            s.slip = tangential(rel_new, s.normal);
+            if out.state == PairState::Sliding {
+                s.acc_slip += norm(dslip);
+            }
+            s.normal_force = out.normal;
+            s.tangential = out.tangential;
+            if s.state != PairState::Bonded && norm(s.slip) > s.slip_threshold {
+                // Large slip: from the next step on this node contacts the faces of b.
+                s.surface = true;
+                s.partner = NONE;
+            }
+        }
+    }
+
+    /// Per-node output fields for the VTU writer: (name, components, values) with
+    /// `n_nodes × components` values. Nodes on no interface get state −1 and zeros.
+    ///
+    /// - `contact_state`: 0 bonded, 1 stick, 2 sliding, 3 separated (pairs); +10 for nodes
+    ///   of surface a in point-to-surface contact; −1 elsewhere;
+    /// - `contact_gap` (m, open positive), `contact_slip` (vector, m: net relative
+    ///   tangential displacement of the opposite side), `contact_slip_accumulated` (m),
+    ///   `contact_normal_force` (N, compression positive), `contact_tangential_force`
+    ///   (vector, N, on the node).
+    ///
+    /// The partner (surface b) node of a pair shows the pair's values with the slip and the
+    /// tangential force reversed.
+    pub fn node_fields(&self, n_nodes: usize) -> Vec<(String, usize, Vec<f64>)> {
+        let mut state = vec![-1.0; n_nodes];
+        let mut gap = vec![0.0; n_nodes];
+        let mut slip = vec![0.0; 3 * n_nodes];
+        let mut acc = vec![0.0; n_nodes];
+        let mut nf = vec![0.0; n_nodes];
+        let mut tf = vec![0.0; 3 * n_nodes];
+        for iface in &self.interfaces {
+            for s in &iface.slaves {
+                let code = s.state.code() as f64 + if s.surface { 10.0 } else { 0.0 };
+                let mut put = |k: usize, sign: f64| {
+                    if k >= n_nodes {
+                        return;
+                    }
+                    state[k] = code;
+                    gap[k] = s.gap;
+                    acc[k] = s.acc_slip;
+                    nf[k] = s.normal_force;
+                    for d in 0..3 {
+                        slip[3 * k + d] = sign * s.slip[d];
+                        tf[3 * k + d] = sign * s.tangential[d];
+                    }
+                };
+                put(s.node as usize, 1.0);
+                if s.partner != NONE {
+                    put(s.partner as usize, -1.0);
+                }
+            }
+        }
+        vec![
+            ("contact_state".into(), 1, state),
+            ("contact_gap".into(), 1, gap),
+            ("contact_slip".into(), 3, slip),
+            ("contact_slip_accumulated".into(), 1, acc),
+            ("contact_normal_force".into(), 1, nf),
+            ("contact_tangential_force".into(), 3, tf),
+        ]
+    }
+
+    /// Area of each interface (control areas of surface a) per state:
+    /// [point-to-point sticking (bonded or not), point-to-point sliding, separated (either
+    /// mode), point-to-surface in contact (sticking or sliding)].
+    pub fn state_areas(&self) -> Vec<(String, [f64; 4])> {
+        self.interfaces
+            .iter()
+            .map(|iface| {
+                let mut a = [0.0; 4];
+                for s in &iface.slaves {
+                    let k = match (s.surface, s.state) {
+                        (_, PairState::Separated) => 2,
+                        (true, _) => 3,
+                        (false, PairState::Sliding) => 1,
+                        (false, _) => 0,
+                    };
+                    a[k] += s.area;
+                }
+                (iface.name.clone(), a)
+            })
+            .collect()
+    }
+
+    /// Number of slave nodes per state code (0–3, +10 in point-to-surface) of interface
+    /// `k`, for tests and summaries: `[bonded, stick, sliding, separated]` for pairs and
+    /// the same for point-to-surface nodes.
+    pub fn state_counts(&self, k: usize) -> ([usize; 4], [usize; 4]) {
+        let mut p = [0; 4];
+        let mut s = [0; 4];
+        if let Some(iface) = self.interfaces.get(k) {
+            for n in &iface.slaves {
+                let c = n.state.code() as usize;
+                if n.surface {
+                    s[c] += 1;
+                } else {
+                    p[c] += 1;
+                }
+            }
+        }
+        (p, s)
+    }
+
+    /// The pairs of interface `k`: (node of a, node of b or u32::MAX, control area,
+    /// unit normal). For tests and diagnostics.
+    pub fn pairs(&self, k: usize) -> Vec<(u32, u32, f64, [f64; 3])> {
+        self.interfaces
+            .get(k)
+            .map(|i| {
+                i.slaves
+                    .iter()
+                    .map(|s| (s.node, s.partner, s.area, s.normal))
+                    .collect()
+            })
+            .unwrap_or_default()
+    }
+}
+
+#[cfg(test)]
+mod tests;

@@ -1,0 +1,656 @@
+//! Point-to-surface contact, eqs. (16)–(22), in the leapfrog form.
+//!
+//! A node i of surface a in point-to-surface contact touches the point c of a face of
+//! surface b with bilinear shape functions φⱼ(ξ, η) (eq. (16)). Its force Rᵢ acts on i and
+//! −φⱼ Rᵢ on the face nodes j (statically equivalent to −Rᵢ applied at c). With the
+//! correction U = Ū + Δt² w R the relative position dᵢ = x_c − xᵢ after the step is
+//!
+//! ```text
+//!   dᵢ = d̄ᵢ − Σₖ Hᵢₖ Rₖ,   Hᵢₖ = Δt² (wᵢ δᵢₖ + Σⱼ φⱼ⁽ⁱ⁾ φⱼ⁽ᵏ⁾ wⱼ)        (17)–(18)
+//! ```
+//!
+//! (the paper's H of eqs. (20)–(21) with Δt²/(2M) → Δt² w), summed over the face nodes j
+//! shared by the faces of i and k. With the contact normal nᵢ (from i towards b: minus the
+//! outward normal of the face at c, configuration at tⁿ):
+//!
+//! - ḡᵢ = d̄ᵢ·nᵢ − min(0, dᵢⁿ·nᵢ): the predicted gap, less any penetration present at tⁿ
+//!   (held, not pushed out, so that contact forces never do positive work);
+//! - stick (3 unknowns Rᵢ): (H R)ᵢ = ḡᵢ nᵢ + Pₜ(d̄ᵢ − dᵢⁿ) — eq. (20) for the normal part
+//!   with Δ₃ = ḡᵢ nᵢ, eq. (21) for the tangential part with Δ₄ = Pₜ(d̄ᵢ − dᵢⁿ);
+//! - slide (1 unknown λᵢ, Rᵢ = λᵢ(−nᵢ + μd t̂ᵢ), eq. (13)): nᵢ·(H R)ᵢ = ḡᵢ, the tangential
+//!   row leaves the system;
+//! - open (ḡᵢ ≥ 0, or λᵢ < 0 after a solve): Rᵢ = 0 (eq. (15)).
+//!
+//! The system is assembled as a sparse matrix and solved with faer's sparse LU. Starting
+//! with every closed node sticking, nodes with λ < 0 are released and sticking nodes with
+//! |T| > μs λ switch to sliding (t̂ = T/|T| of that solve); the loop repeats until nothing
+//! changes; then open nodes that their neighbours' forces (through shared face nodes) would
+//! push into surface b are added as sticking and the loop goes on. Every switch happens at
+//! most once per node and step (open → stick, stick → slide, contact → released in
+//! tension, never re-added), so it ends after at most 3m + 2 solves.
+//!
+//! Coupled friction can leave that solution inconsistent (a sliding node whose friction,
+//! aimed by the stick solve, reverses its own slip once its neighbours slide too). A
+//! projected Gauss–Seidel polish follows: each node in turn solves its own contact law
+//! (the pair kernel with Hᵢᵢ/Δt² for w_a + w_b) given the others' forces, until no force
+//! changes by more than 1e-12 of the largest; a node that slid in the step keeps μd for the
+//! rest of it. On consistent solutions the first sweep changes nothing. The end state
+//! satisfies every node's law, so the forces do no positive work. No settling within 2000
+//! sweeps is an error naming the interface and the step.
+
+use std::collections::HashMap;
+
+use faer::prelude::*;
+use faer::sparse::{SparseColMat, Triplet};
+
+use super::geom::{
+    add, axpy, dot, face_normal, face_point, face_shape, norm, project_on_face, scale, sub,
+    tangential,
+};
+use super::pair::{solve_pair, PairInput, PairParams};
+use super::{ContactStepInput, Interface, PairState, NONE};
+use crate::error::{DcfmError, Result};
+
+/// Reusable buffers of the point-to-surface solve.
+#[derive(Clone, Debug, Default)]
+pub struct Scratch {
+    grid: HashMap<[i64; 3], Vec<u32>>,
+    active: Vec<Active>,
+    h: Vec<(usize, usize, f64)>,
+    by_master: Vec<(u32, usize, f64)>,
+    triplets: Vec<Triplet<usize, usize, f64>>,
+    /// Nodes whose force the last solve wrote.
+    pub(super) touched: Vec<u32>,
+}
+
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Mode {
+    Stick,
+    Slide,
+    Open,
+}
+
+#[derive(Clone, Copy, Debug)]
+struct Active {
+    slave: usize,
+    node: u32,
+    face: [u32; 4],
+    phi: [f64; 4],
+    n: [f64; 3],
+    gbar: f64,
+    rhs: [f64; 3],
+    dn: [f64; 3],
+    mode: Mode,
+    dir: [f64; 3],
+    offset: usize,
+    r: [f64; 3],
+    /// Released in tension during this step (never re-activated in the same step).
+    released: bool,
+    /// Nothing can move this node (H diagonal zero): no force.
+    fixed: bool,
+    /// (H R)ᵢ of the last solve.
+    hr: [f64; 3],
+    /// Has slid in this step.
+    slid: bool,
+}
+
+/// One contact group given directly: the pure kernel behind [`solve`], public for tests and
+/// benchmarks. `nodes[i] = (wᵢ, face nodes' w, φ, face node ids, nᵢ, d̄ᵢ, dᵢⁿ)`; returns
+/// the forces Rᵢ and the final states (Stick, Sliding or Separated).
+#[allow(clippy::type_complexity)]
+pub fn solve_group(
+    dt: f64,
+    mu_s: f64,
+    mu_d: f64,
+    nodes: &[(
+        f64,
+        [f64; 4],
+        [f64; 4],
+        [u32; 4],
+        [f64; 3],
+        [f64; 3],
+        [f64; 3],
+    )],
+) -> std::result::Result<Vec<([f64; 3], PairState)>, String> {
+    // Build a scratch set of actives; inverse masses of face nodes come per node.
+    let mut w_of: HashMap<u32, f64> = HashMap::new();
+    let mut active = Vec::with_capacity(nodes.len());
+    for (i, &(_, wf, phi, face, n, dbar, dn)) in nodes.iter().enumerate() {
+        for j in 0..4 {
+            w_of.insert(face[j], wf[j]);
+        }
+        active.push(new_active(i, NONE, face, phi, n, dbar, dn));
+    }
+    let w_slave: Vec<f64> = nodes.iter().map(|t| t.0).collect();
+    let mut scratch = Scratch {
+        active,
+        ..Default::default()
+    };
+    solve_active(&mut scratch, dt, mu_s, mu_d, &|i| w_slave[i], &|j| w_of[&j])?;
+    Ok(scratch
+        .active
+        .iter()
+        .map(|a| {
+            let st = match a.mode {
+                Mode::Stick => PairState::Stick,
+                Mode::Slide => PairState::Sliding,
+                Mode::Open => PairState::Separated,
+            };
+            (a.r, st)
+        })
+        .collect())
+}
+
+/// Forces on the four face nodes from the force `r` on the contact node: −φⱼ r. They sum
+/// to −r and are statically equivalent to −r applied at x_c = Σ φⱼ xⱼ.
+#[inline]
+pub fn distribute(phi: &[f64; 4], r: [f64; 3]) -> [[f64; 3]; 4] {
+    phi.map(|p| scale(-p, r))
+}
+
+/// Whether the closest point found by [`project_on_face`] is a contact candidate: within
+/// `capture` and, when it was clamped to an edge, with an in-plane offset of at most
+/// `edge_tol` (so that a node that has slid off the edge of surface b is free).
+#[inline]
+fn accept(x: &[[f64; 3]; 4], p: [f64; 3], xi: f64, eta: f64, capture: f64, edge_tol: f64) -> bool {
+    let (q, _, _) = face_point(x, xi, eta);
+    let d = sub(p, q);
+    if norm(d) > capture {
+        return false;
+    }
+    match face_normal(x, xi, eta) {
+        Some(nb) => norm(tangential(d, nb)) <= edge_tol,
+        None => false,
+    }
+}
+
+fn new_active(
+    slave: usize,
+    node: u32,
+    face: [u32; 4],
+    phi: [f64; 4],
+    n: [f64; 3],
+    dbar: [f64; 3],
+    dn: [f64; 3],
+) -> Active {
+    // Gap to close: down to zero, or, where the node already penetrates at tⁿ (a change of
+    // contact face, the coupling of neighbours), down to that penetration: it is held, not
+    // pushed out, so that contact forces never do positive work.
+    let gbar = dot(dbar, n) - dot(dn, n).min(0.0);
+    let rhs = axpy(tangential(sub(dbar, dn), n), gbar, n);
+    Active {
+        slave,
+        node,
+        face,
+        phi,
+        n,
+        gbar,
+        rhs,
+        dn,
+        mode: if gbar < 0.0 { Mode::Stick } else { Mode::Open },
+        dir: [0.0; 3],
+        offset: 0,
+        r: [0.0; 3],
+        released: false,
+        fixed: false,
+        hr: [0.0; 3],
+        slid: false,
+    }
+}
+
+/// Assemble Hᵢₖ (sorted, merged) for the active set.
+fn assemble_h(
+    s: &mut Scratch,
+    dt2: f64,
+    w_slave: &dyn Fn(usize) -> f64,
+    w_node: &dyn Fn(u32) -> f64,
+) {
+    s.h.clear();
+    s.by_master.clear();
+    for (i, a) in s.active.iter().enumerate() {
+        s.h.push((i, i, dt2 * w_slave(a.slave)));
+        for j in 0..4 {
+            if a.phi[j] != 0.0 {
+                s.by_master.push((a.face[j], i, a.phi[j]));
+            }
+        }
+    }
+    s.by_master.sort_unstable_by_key(|x| (x.0, x.1));
+    let mut start = 0;
+    while start < s.by_master.len() {
+        let node = s.by_master[start].0;
+        let mut end = start;
+        while end < s.by_master.len() && s.by_master[end].0 == node {
+            end += 1;
+        }
+        let w = w_node(node);
+        if w != 0.0 {
+            for p in start..end {
+                for q in start..end {
+                    let (_, i, fi) = s.by_master[p];
+                    let (_, k, fk) = s.by_master[q];
+                    s.h.push((i, k, dt2 * w * fi * fk));
+                }
+            }
+        }
+        start = end;
+    }
+    s.h.sort_unstable_by_key(|x| (x.0, x.1));
+    let mut out = 0;
+    for p in 0..s.h.len() {
+        if out > 0 && s.h[out - 1].0 == s.h[p].0 && s.h[out - 1].1 == s.h[p].1 {
+            s.h[out - 1].2 += s.h[p].2;
+        } else {
+            s.h[out] = s.h[p];
+            out += 1;
+        }
+    }
+    s.h.truncate(out);
+}
+
+/// Active-set loop over the H system; fills `a.r` and `a.mode` of every active node.
+fn solve_active(
+    s: &mut Scratch,
+    dt: f64,
+    mu_s: f64,
+    mu_d: f64,
+    w_slave: &dyn Fn(usize) -> f64,
+    w_node: &dyn Fn(u32) -> f64,
+) -> std::result::Result<usize, String> {
+    let iters = active_set(s, dt, mu_s, mu_d, w_slave, w_node)?;
+    polish(s, dt, mu_s, mu_d)?;
+    Ok(iters)
+}
+
+/// Projected Gauss–Seidel sweeps from the active-set solution until every node satisfies
+/// its own contact law given the forces of the others (the same rules as a pair, with
+/// Hᵢᵢ/Δt² in place of w_a + w_b). Where the active-set solution is consistent — the usual
+/// case — the first sweep changes nothing. Where coupled friction made it inconsistent
+/// (a sliding node whose friction would reverse its own slip) the sweeps settle it, so that
+/// every sliding node ends with T along its slip and the forces do no positive work.
+fn polish(s: &mut Scratch, dt: f64, mu_s: f64, mu_d: f64) -> std::result::Result<usize, String> {
+    const MAX_SWEEPS: usize = 2000;
+    let m = s.active.len();
+    // Row ranges of the sorted H list.
+    let mut row = vec![0usize; m + 1];
+    for &(i, _, _) in &s.h {
+        row[i + 1] += 1;
+    }
+    for i in 0..m {
+        row[i + 1] += row[i];
+    }
+    let params = PairParams {
+        mu_s,
+        mu_d,
+        shear_capacity: 0.0,
+        tensile_capacity: 0.0,
+    };
+    // A node that slid in this step keeps the kinetic coefficient for the rest of the
+    // step: it sticks again only inside the μd cone (static/kinetic switching between
+    // coupled nodes otherwise has no fixed point).
+    let kinetic = PairParams {
+        mu_s: mu_d,
+        ..params
+    };
+    let fmax = s.active.iter().map(|a| norm(a.r)).fold(0.0, f64::max);
+    for sweep in 1..=MAX_SWEEPS {
+        let mut change: f64 = 0.0;
+        let mut scale_f = fmax;
+        for i in 0..m {
+            if s.active[i].fixed {
+                continue;
+            }
+            let mut hii = 0.0;
+            let mut coupled = [0.0; 3];
+            for &(_, k, h) in &s.h[row[i]..row[i + 1]] {
+                if k == i {
+                    hii = h;
+                } else {
+                    coupled = axpy(coupled, h, s.active[k].r);
+                }
+            }
+            let a = &s.active[i];
+            if a.released || (a.mode == Mode::Open && a.gbar - dot(coupled, a.n) >= 0.0) {
+                continue;
+            }
+            // Local problem: relative position after the step d = d̃ − Hᵢᵢ Rᵢ.
+            let target = dot(a.dn, a.n).min(0.0);
+            let dtilde = sub(axpy(a.rhs, target, a.n), coupled); // = P_t(d̄ − dⁿ) + (d̄·n) n − Σ H R
+            let dtilde = add(dtilde, tangential(a.dn, a.n));
+            let out = solve_pair(
+                PairState::Stick,
+                if a.slid { &kinetic } else { &params },
+                &PairInput {
+                    n: a.n,
+                    w_sum: hii / (dt * dt),
+                    dt,
+                    rel_pred: dtilde,
+                    rel_old: a.dn,
+                },
+            );
+            let a = &mut s.active[i];
+            change = change.max(norm(sub(out.r, a.r)));
+            scale_f = scale_f.max(norm(out.r));
+            a.r = out.r;
+            a.mode = match out.state {
+                PairState::Sliding => {
+                    a.slid = true;
+                    Mode::Slide
+                }
+                PairState::Separated => Mode::Open,
+                _ => Mode::Stick,
+            };
+        }
+        if change <= 1e-12 * scale_f.max(f64::MIN_POSITIVE) {
+            return Ok(sweep);
+        }
+    }
+    Err(format!(
+        "friction of {m} coupled nodes did not settle in {MAX_SWEEPS} Gauss–Seidel sweeps"
+    ))
+}
+
+fn active_set(
+    s: &mut Scratch,
+    dt: f64,
+    mu_s: f64,
+    mu_d: f64,
+    w_slave: &dyn Fn(usize) -> f64,
+    w_node: &dyn Fn(u32) -> f64,
+) -> std::result::Result<usize, String> {
+    let m = s.active.len();
+    // Nodes that nothing can move get no force.
+    assemble_h(s, dt * dt, w_slave, w_node);
+    for &(i, k, h) in &s.h {
+        if i == k && h <= 0.0 {
+            s.active[i].mode = Mode::Open;
+            s.active[i].fixed = true;
+        }
+    }
+    let max_iter = 3 * m + 2;
+    for iter in 1..=max_iter {
+        let mut size = 0;
+        for a in s.active.iter_mut() {
+            a.offset = size;
+            a.r = [0.0; 3];
+            size += match a.mode {
+                Mode::Stick => 3,
+                Mode::Slide => 1,
+                Mode::Open => 0,
+            };
+        }
+        if size == 0 {
+            return Ok(iter);
+        }
+        s.triplets.clear();
+        for &(i, k, h) in &s.h {
+            let (ai, ak) = (&s.active[i], &s.active[k]);
+            let (oi, ok) = (ai.offset, ak.offset);
+            match (ai.mode, ak.mode) {
+                (Mode::Open, _) | (_, Mode::Open) => {}
+                (Mode::Stick, Mode::Stick) => {
+                    for d in 0..3 {
+                        s.triplets.push(Triplet::new(oi + d, ok + d, h));
+                    }
+                }
+                (Mode::Stick, Mode::Slide) => {
+                    for d in 0..3 {
+                        s.triplets.push(Triplet::new(oi + d, ok, h * ak.dir[d]));
+                    }
+                }
+                (Mode::Slide, Mode::Stick) => {
+                    for d in 0..3 {
+                        s.triplets.push(Triplet::new(oi, ok + d, h * ai.n[d]));
+                    }
+                }
+                (Mode::Slide, Mode::Slide) => {
+                    s.triplets.push(Triplet::new(oi, ok, h * dot(ai.n, ak.dir)));
+                }
+            }
+        }
+        let mut rhs = Mat::<f64>::zeros(size, 1);
+        for a in &s.active {
+            match a.mode {
+                Mode::Stick => {
+                    for d in 0..3 {
+                        rhs[(a.offset + d, 0)] = a.rhs[d];
+                    }
+                }
+                Mode::Slide => rhs[(a.offset, 0)] = a.gbar,
+                Mode::Open => {}
+            }
+        }
+        let mat = SparseColMat::<usize, f64>::try_new_from_triplets(size, size, &s.triplets)
+            .map_err(|e| format!("cannot assemble the contact matrix: {e:?}"))?;
+        let lu = mat
+            .sp_lu()
+            .map_err(|e| format!("singular contact matrix ({size} unknowns): {e:?}"))?;
+        lu.solve_in_place(rhs.as_mut());
+        let mut changed = false;
+        for a in s.active.iter_mut() {
+            a.r = match a.mode {
+                Mode::Stick => [0, 1, 2].map(|d| rhs[(a.offset + d, 0)]),
+                Mode::Slide => scale(rhs[(a.offset, 0)], a.dir),
+                Mode::Open => [0.0; 3],
+            };
+            if a.r.iter().any(|v| !v.is_finite()) {
+                return Err("non-finite contact force (singular system)".into());
+            }
+        }
+        for a in s.active.iter_mut() {
+            if a.mode == Mode::Open {
+                continue;
+            }
+            let lambda = -dot(a.r, a.n);
+            if lambda < 0.0 {
+                a.mode = Mode::Open;
+                a.r = [0.0; 3];
+                a.released = true;
+                changed = true;
+                continue;
+            }
+            if a.mode == Mode::Stick {
+                let t = tangential(a.r, a.n);
+                let tm = norm(t);
+                if tm > mu_s * lambda * (1.0 + 1e-12) {
+                    a.mode = Mode::Slide;
+                    a.slid = true;
+                    a.dir = axpy(scale(-1.0, a.n), mu_d / tm, t);
+                    changed = true;
+                }
+            }
+        }
+        if changed {
+            continue;
+        }
+        // Open nodes that the forces of their neighbours (through shared face nodes) would
+        // push into surface b come into contact.
+        for a in s.active.iter_mut() {
+            a.hr = [0.0; 3];
+        }
+        for &(i, k, h) in &s.h {
+            let rk = s.active[k].r;
+            s.active[i].hr = axpy(s.active[i].hr, h, rk);
+        }
+        for a in s.active.iter_mut() {
+            if a.mode == Mode::Open && !a.released && !a.fixed && a.gbar - dot(a.hr, a.n) < 0.0 {
+                a.mode = Mode::Stick;
+                changed = true;
+            }
+        }
+        if changed {
+            continue;
+        }
+        return Ok(iter);
+    }
+    Err(format!(
+        "active set did not settle in {max_iter} solves ({m} nodes)"
+    ))
+}
+
+fn cell(x: [f64; 3], h: f64) -> [i64; 3] {
+    x.map(|c| (c / h).floor() as i64)
+}
+
+/// Point-to-surface contact of every node of `iface` in that mode, for one step.
+pub(super) fn solve(
+    iface: &mut Interface,
+    inp: &ContactStepInput,
+    r: &mut [[f64; 3]],
+    s: &mut Scratch,
+) -> Result<()> {
+    let dt2 = inp.dt * inp.dt;
+    s.touched.clear();
+    s.active.clear();
+    let cur = |k: u32| -> [f64; 3] {
+        let k = k as usize;
+        add(inp.coords[k], inp.u_old[k])
+    };
+    // Grid of the faces of b over the configuration at tⁿ; cells of the largest face size.
+    let mut hmax: f64 = 0.0;
+    for f in &iface.b_faces {
+        let x = f.map(cur);
+        hmax = hmax.max(norm(sub(x[2], x[0]))).max(norm(sub(x[3], x[1])));
+    }
+    let hcell = hmax.max(iface.b_face_size).max(f64::MIN_POSITIVE);
+    let capture = 0.5 * hcell;
+    let edge_tol = 1e-2 * hcell;
+    for list in s.grid.values_mut() {
+        list.clear();
+    }
+    for (fi, f) in iface.b_faces.iter().enumerate() {
+        let x = f.map(cur);
+        let lo = [0, 1, 2].map(|d| x.iter().map(|q| q[d]).fold(f64::INFINITY, f64::min) - capture);
+        let hi =
+            [0, 1, 2].map(|d| x.iter().map(|q| q[d]).fold(f64::NEG_INFINITY, f64::max) + capture);
+        let (c0, c1) = (cell(lo, hcell), cell(hi, hcell));
+        for i in c0[0]..=c1[0] {
+            for j in c0[1]..=c1[1] {
+                for k in c0[2]..=c1[2] {
+                    s.grid.entry([i, j, k]).or_default().push(fi as u32);
+                }
+            }
+        }
+    }
+    // Closest facing face for each node in point-to-surface contact.
+    for (si, sl) in iface.slaves.iter_mut().enumerate() {
+        if !sl.surface {
+            continue;
+        }
+        let p = cur(sl.node);
+        let mut best: Option<(f64, u32, f64, f64)> = None;
+        if let Some(list) = s.grid.get(&cell(p, hcell)) {
+            for &fi in list {
+                let x = iface.b_faces[fi as usize].map(cur);
+                let (xi, eta, dist) = project_on_face(&x, p);
+                if best.is_some_and(|(bd, _, _, _)| dist >= bd)
+                    || !accept(&x, p, xi, eta, capture, edge_tol)
+                {
+                    continue;
+                }
+                match face_normal(&x, xi, eta) {
+                    Some(nb) if dot(nb, sl.normal) < 0.0 => best = Some((dist, fi, xi, eta)),
+                    _ => {}
+                }
+            }
+        }
+        let Some((_, fi, xi, eta)) = best else {
+            sl.face = NONE;
+            sl.state = PairState::Separated;
+            sl.gap = capture;
+            sl.normal_force = 0.0;
+            sl.tangential = [0.0; 3];
+            continue;
+        };
+        let face = iface.b_faces[fi as usize];
+        let x = face.map(cur);
+        let n = scale(-1.0, face_normal(&x, xi, eta).unwrap_or([0.0; 3]));
+        let phi = face_shape(xi, eta);
+        let (xc, _, _) = face_point(&x, xi, eta);
+        let dn = sub(xc, p);
+        let pred = |k: u32| -> [f64; 3] {
+            let k = k as usize;
+            add(
+                inp.coords[k],
+                axpy(inp.u_pred[k], dt2 * inp.inv_mass[k], r[k]),
+            )
+        };
+        let xbar = face.map(pred);
+        let cbar = (0..4).fold([0.0; 3], |acc, j| axpy(acc, phi[j], xbar[j]));
+        let dbar = sub(cbar, pred(sl.node));
+        sl.face = fi;
+        sl.xi = [xi, eta];
+        s.active
+            .push(new_active(si, sl.node, face, phi, n, dbar, dn));
+    }
+    if s.active.iter().all(|a| a.mode == Mode::Open) {
+        for a in &s.active {
+            let sl = &mut iface.slaves[a.slave];
+            sl.state = PairState::Separated;
+            sl.gap = a.gbar;
+            sl.normal_force = 0.0;
+            sl.tangential = [0.0; 3];
+            sl.slip = add(sl.slip, tangential(sub(a.rhs, scale(a.gbar, a.n)), a.n));
+        }
+        return Ok(());
+    }
+    let slaves = &iface.slaves;
+    let w = inp.inv_mass;
+    solve_active(
+        s,
+        inp.dt,
+        iface.mu_s,
+        iface.mu_d,
+        &|i| w[slaves[i].node as usize],
+        &|j| w[j as usize],
+    )
+    .map_err(|message| DcfmError::Contact {
+        interface: iface.name.clone(),
+        message: format!(
+            "step {} (t = {:.6e} s): point-to-surface: {message}",
+            inp.step, inp.time
+        ),
+    })?;
+    // Forces: Rᵢ on the node, −φⱼ Rᵢ on the face nodes.
+    for a in &s.active {
+        if a.mode == Mode::Open {
+            continue;
+        }
+        let i = a.node as usize;
+        r[i] = add(r[i], a.r);
+        s.touched.push(a.node);
+        for (j, f) in distribute(&a.phi, a.r).into_iter().enumerate() {
+            let k = a.face[j] as usize;
+            r[k] = add(r[k], f);
+            s.touched.push(a.face[j]);
+        }
+    }
+    // Records: corrected gap, slip increment, forces, states.
+    for a in &s.active {
+        let sl = &mut iface.slaves[a.slave];
+        let corr = |k: u32| -> [f64; 3] {
+            let k = k as usize;
+            add(
+                inp.coords[k],
+                axpy(inp.u_pred[k], dt2 * inp.inv_mass[k], r[k]),
+            )
+        };
+        let c = (0..4).fold([0.0; 3], |acc, j| axpy(acc, a.phi[j], corr(a.face[j])));
+        let d = sub(c, corr(a.node));
+        let dslip = tangential(sub(d, a.dn), a.n);
+        sl.gap = dot(d, a.n);
+        sl.slip = add(sl.slip, dslip);
+        let lambda = -dot(a.r, a.n);
+        sl.normal_force = if a.mode == Mode::Open { 0.0 } else { lambda };
+        sl.tangential = tangential(a.r, a.n);
+        sl.state = match a.mode {
+            Mode::Stick => PairState::Stick,
+            Mode::Slide => {
+                sl.acc_slip += norm(dslip);
+                PairState::Sliding
+            }
+            Mode::Open => PairState::Separated,
+        };
+    }
+    Ok(())
+}

@@ -1,0 +1,536 @@
+//! Unit tests of the contact system through `compute()`: W9's table on a real two-block
+//! mesh, setup errors, point-to-surface balance, the pair → surface switch and W6.
+
+use super::*;
+use crate::mesh::{BlockSpec, BoxMeshSpec, Face};
+
+const DT: f64 = 1e-3;
+
+fn block(name: &str, origin: [f64; 3], size: [f64; 3], div: [usize; 3]) -> BlockSpec {
+    BlockSpec {
+        name: name.into(),
+        region: None,
+        origin,
+        size,
+        divisions: div,
+        grading: [1.0; 3],
+    }
+}
+
+/// Two 2 × 2 × 1 m single-element blocks, `top` on `base`, split: four node pairs, each
+/// with control area 1 m², normal +z (surface a = top face of base).
+fn two_blocks() -> Mesh {
+    BoxMeshSpec {
+        blocks: vec![
+            block("base", [0.0; 3], [2.0, 2.0, 1.0], [1, 1, 1]),
+            block("top", [0.0, 0.0, 1.0], [2.0, 2.0, 1.0], [1, 1, 1]),
+        ],
+        split: vec![["base".into(), "top".into()]],
+        merge_tolerance: 1e-6,
+    }
+    .build("t.toml")
+    .unwrap()
+}
+
+fn w9_spec() -> InterfaceSpec {
+    InterfaceSpec::new("w9", "base-top", "top-base", 0.5, 0.4, 5.0)
+}
+
+struct Rig {
+    mesh: Mesh,
+    sys: ContactSystem,
+    w: Vec<f64>,
+    r: Vec<[f64; 3]>,
+}
+
+impl Rig {
+    fn w9() -> Rig {
+        let mesh = two_blocks();
+        let sys = ContactSystem::new(&mesh, &[w9_spec()], "t.toml").unwrap();
+        let mut w = vec![1.0; mesh.n_nodes()];
+        for (a, b, area, n) in sys.pairs(0) {
+            assert!((area - 1.0).abs() < 1e-14);
+            assert!((n[2] - 1.0).abs() < 1e-14);
+            w[a as usize] = 1.0; // mass 1 on surface a
+            w[b as usize] = 1.0 / 3.0; // mass 3 on surface b
+        }
+        let r = vec![[0.0; 3]; mesh.n_nodes()];
+        Rig { mesh, sys, w, r }
+    }
+
+    /// One step from rest at the reference configuration with load `f` on every node of
+    /// surface a; returns (force on a, force on b) per pair.
+    fn step_from_rest(&mut self, f: [f64; 3]) -> Vec<([f64; 3], [f64; 3])> {
+        let n = self.mesh.n_nodes();
+        for &k in self.sys.touched_nodes() {
+            self.r[k as usize] = [0.0; 3];
+        }
+        let zero = vec![[0.0; 3]; n];
+        let mut u_pred = zero.clone();
+        let mut v_pred = zero.clone();
+        let pairs = self.sys.pairs(0);
+        for &(a, _, _, _) in &pairs {
+            let wa = self.w[a as usize];
+            v_pred[a as usize] = geom::scale(DT * wa, f);
+            u_pred[a as usize] = geom::scale(DT * DT * wa, f);
+        }
+        let inp = ContactStepInput {
+            step: 1,
+            time: 0.0,
+            dt: DT,
+            inv_mass: &self.w,
+            coords: &self.mesh.coords,
+            u_old: &zero,
+            u_pred: &u_pred,
+            v_pred: &v_pred,
+        };
+        self.sys.compute(&inp, &mut self.r).unwrap();
+        pairs
+            .iter()
+            .map(|&(a, b, _, _)| (self.r[a as usize], self.r[b as usize]))
+            .collect()
+    }
+}
+
+fn rel_close(a: f64, b: f64) -> bool {
+    (a - b).abs() <= 1e-10 * b.abs().max(1.0)
+}
+
+fn states(sys: &ContactSystem) -> [usize; 4] {
+    sys.state_counts(0).0
+}
+
+#[test]
+fn w9_table_through_compute() {
+    // 20 N compressive: stick, R_n = 15 N, common acceleration 5 m/s².
+    let mut rig = Rig::w9();
+    for (ra, rb) in rig.step_from_rest([0.0, 0.0, 20.0]) {
+        assert!(rel_close(-ra[2], 15.0) && rel_close(rb[2], 15.0), "{ra:?}");
+        assert!(rel_close((20.0 + ra[2]) / 1.0, 5.0));
+        assert!(rel_close(rb[2] / 3.0, 5.0));
+    }
+    assert_eq!(states(&rig.sys), [4, 0, 0, 0]);
+
+    // 10 N pulling apart: separation (tensile demand 7.5 N > 5 N).
+    let mut rig = Rig::w9();
+    for (ra, rb) in rig.step_from_rest([0.0, 0.0, -10.0]) {
+        assert_eq!((ra, rb), ([0.0; 3], [0.0; 3]));
+    }
+    assert_eq!(states(&rig.sys), [0, 0, 0, 4]);
+    // 4 N pulling apart, unbonded: separation.
+    for (ra, _) in rig.step_from_rest([0.0, 0.0, -4.0]) {
+        assert_eq!(ra, [0.0; 3]);
+    }
+    assert_eq!(states(&rig.sys), [0, 0, 0, 4]);
+    // 20 N + 16 N tangential, unbonded: slide, R_t = 6 N, accelerations 10 and 2 m/s².
+    for (ra, rb) in rig.step_from_rest([0.0, 16.0, 20.0]) {
+        assert!(rel_close(-ra[1], 6.0) && rel_close(-ra[2], 15.0), "{ra:?}");
+        assert!(rel_close(16.0 + ra[1], 10.0));
+        assert!(rel_close(rb[1] / 3.0, 2.0));
+    }
+    assert_eq!(states(&rig.sys), [0, 0, 4, 0]);
+    // Friction work of that step: per pair R·Δrel = 6 N × 8 Δt² m.
+    let w_before = rig.sys.friction_work();
+    // 20 N + 8 N tangential, unbonded: stick, R_t = 6 N (and no dissipation).
+    for (ra, _) in rig.step_from_rest([0.0, 8.0, 20.0]) {
+        assert!(rel_close(-ra[1], 6.0));
+    }
+    assert_eq!(states(&rig.sys), [0, 4, 0, 0]);
+    assert!(rel_close(rig.sys.friction_work(), w_before));
+    assert!(
+        rel_close(w_before / (DT * DT), 4.0 * 48.0),
+        "{}",
+        w_before / (DT * DT)
+    );
+
+    // 4 N pulling apart, bonded: stick (3 N < 5 N).
+    let mut rig = Rig::w9();
+    for (ra, _) in rig.step_from_rest([0.0, 0.0, -4.0]) {
+        assert!(rel_close(ra[2], 3.0));
+    }
+    assert_eq!(states(&rig.sys), [4, 0, 0, 0]);
+    // 20 N compressive + 8 N tangential: stick, R_t = 6 N.
+    for (ra, _) in rig.step_from_rest([0.0, 8.0, 20.0]) {
+        assert!(rel_close(-ra[1], 6.0));
+    }
+    // 20 N + 16 N tangential, bonded: stick (12 N < 7.5 + 5 N).
+    for (ra, _) in rig.step_from_rest([0.0, 16.0, 20.0]) {
+        assert!(rel_close(-ra[1], 12.0));
+    }
+    assert_eq!(states(&rig.sys), [4, 0, 0, 0]);
+    // 20 N + 18 N tangential, bonded: slide (13.5 N > 12.5 N), cohesion gone for good.
+    for (ra, _) in rig.step_from_rest([0.0, 18.0, 20.0]) {
+        assert!(rel_close(-ra[1], 6.0));
+    }
+    assert_eq!(states(&rig.sys), [0, 0, 4, 0]);
+    rig.step_from_rest([0.0, 0.0, -4.0]);
+    assert_eq!(states(&rig.sys), [0, 0, 0, 4]);
+    let areas = rig.sys.state_areas();
+    assert_eq!(areas[0].0, "w9");
+    let want = [0.0, 0.0, 4.0, 0.0];
+    for (got, want) in areas[0].1.iter().zip(want) {
+        assert!((got - want).abs() < 1e-12, "{areas:?}");
+    }
+}
+
+#[test]
+fn node_fields_have_the_right_shapes() {
+    let mut rig = Rig::w9();
+    rig.step_from_rest([0.0, 0.0, 20.0]);
+    let n = rig.mesh.n_nodes();
+    let f = rig.sys.node_fields(n);
+    assert_eq!(f.len(), 6);
+    for (name, comps, v) in &f {
+        assert_eq!(v.len(), comps * n, "{name}");
+    }
+    let nf = &f[4].2;
+    let (a, b, _, _) = rig.sys.pairs(0)[0];
+    assert!(rel_close(nf[a as usize], 15.0) && rel_close(nf[b as usize], 15.0));
+    assert_eq!(f[0].2.iter().filter(|&&s| s == -1.0).count(), n - 8);
+}
+
+/// Two hand-built unit cubes: element 0 = [0,1]³, element 1 = cube above, shifted by
+/// `shift`. Face set "a" = top of element 0, "b" = bottom of element 1.
+fn cubes(shift: [f64; 3], b_local: u8) -> Mesh {
+    let mut coords = Vec::new();
+    for dz in [0.0, 1.0] {
+        for (x, y) in [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)] {
+            coords.push([x, y, dz]);
+        }
+    }
+    for dz in [1.0, 2.0] {
+        for (x, y) in [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)] {
+            coords.push([x + shift[0], y + shift[1], dz + shift[2]]);
+        }
+    }
+    let mut m = Mesh {
+        coords,
+        elements: vec![[0, 1, 2, 3, 4, 5, 6, 7], [8, 9, 10, 11, 12, 13, 14, 15]],
+        element_region: vec![0, 1],
+        region_names: vec!["base".into(), "top".into()],
+        ..Default::default()
+    };
+    m.face_sets.insert(
+        "a".into(),
+        vec![Face {
+            element: 0,
+            local: 1,
+        }],
+    );
+    m.face_sets.insert(
+        "b".into(),
+        vec![Face {
+            element: 1,
+            local: b_local,
+        }],
+    );
+    m
+}
+
+fn contact_message(e: DcfmError) -> String {
+    match e {
+        DcfmError::Contact { interface, message } => format!("{interface}: {message}"),
+        other => panic!("expected a contact error, got {other}"),
+    }
+}
+
+#[test]
+fn setup_errors_name_the_culprit() {
+    let spec = InterfaceSpec::new("i", "a", "b", 0.6, 0.5, 0.0);
+    // Coincident cubes pair fine.
+    let sys =
+        ContactSystem::new(&cubes([0.0; 3], 0), std::slice::from_ref(&spec), "c.toml").unwrap();
+    assert_eq!(sys.pairs(0).len(), 4);
+    assert!(sys
+        .pairs(0)
+        .iter()
+        .all(|p| p.1 != NONE && (p.2 - 0.25).abs() < 1e-14));
+
+    let e = ContactSystem::new(
+        &cubes([0.3, 0.0, 0.0], 0),
+        std::slice::from_ref(&spec),
+        "c.toml",
+    )
+    .unwrap_err();
+    let m = contact_message(e);
+    assert!(
+        m.contains("node 4 of surface_a") && m.contains("no node of surface_b"),
+        "{m}"
+    );
+
+    // b = top face of a cube sitting at the same place as element 0: normals not opposite.
+    let e = ContactSystem::new(
+        &cubes([0.0, 0.0, -1.0], 1),
+        std::slice::from_ref(&spec),
+        "c.toml",
+    )
+    .unwrap_err();
+    let m = contact_message(e);
+    assert!(m.contains("do not face each other"), "{m}");
+
+    let mut bad = spec.clone();
+    bad.surface_b = "nope".into();
+    let e = ContactSystem::new(&cubes([0.0; 3], 0), &[bad], "c.toml").unwrap_err();
+    assert!(
+        e.to_string().contains("interfaces[0].surface_b = nope"),
+        "{e}"
+    );
+
+    let mut bad = spec.clone();
+    bad.mu_d = 0.7;
+    let e = ContactSystem::new(&cubes([0.0; 3], 0), &[bad], "c.toml").unwrap_err();
+    assert!(e.to_string().contains("interfaces[0].mu_d = 0.7"), "{e}");
+
+    let e = ContactSystem::new(&cubes([0.0; 3], 0), &[spec.clone(), spec.clone()], "c.toml")
+        .unwrap_err();
+    assert!(e.to_string().contains("unique"), "{e}");
+
+    // Same surface on both sides (shared nodes).
+    let mut m = cubes([0.0; 3], 0);
+    m.face_sets.insert(
+        "a2".into(),
+        vec![
+            Face {
+                element: 0,
+                local: 1,
+            },
+            Face {
+                element: 0,
+                local: 3,
+            },
+        ],
+    );
+    let mut s2 = spec.clone();
+    s2.surface_b = "a2".into();
+    let e = ContactSystem::new(&m, &[s2], "c.toml").unwrap_err();
+    assert!(contact_message(e).contains("belongs to both surfaces"));
+
+    // Zero-area face.
+    let mut m = cubes([0.0; 3], 0);
+    m.coords[6] = m.coords[5];
+    m.coords[7] = m.coords[4];
+    let e = ContactSystem::new(&m, std::slice::from_ref(&spec), "c.toml").unwrap_err();
+    let msg = contact_message(e);
+    assert!(
+        msg.contains("face (element 0, local 1)") && msg.contains("zero area"),
+        "{msg}"
+    );
+
+    // Initial penetration in surface mode.
+    let mut s = spec.clone();
+    s.mode = ContactMode::Surface;
+    let e = ContactSystem::new(&cubes([0.0, 0.0, -0.1], 0), &[s.clone()], "c.toml").unwrap_err();
+    assert!(contact_message(e).contains("inside surface_b"));
+    assert!(ContactSystem::new(&cubes([0.3, 0.2, 0.0], 0), &[s], "c.toml").is_ok());
+}
+
+#[test]
+fn inconsistent_normals_are_reported() {
+    // Element 0 = [0,1]³, element 1 = [1,2]×[0,1]×[1,2]; they share the edge x = 1, z = 1.
+    let mut coords = Vec::new();
+    for dz in [0.0, 1.0] {
+        for (x, y) in [(0.0, 0.0), (1.0, 0.0), (1.0, 1.0), (0.0, 1.0)] {
+            coords.push([x, y, dz]);
+        }
+    }
+    let e1 = [1, 16, 17, 2, 18, 19, 20, 21];
+    for (x, y, z) in [
+        (2.0, 0.0, 1.0),
+        (2.0, 1.0, 1.0),
+        (1.0, 0.0, 2.0),
+        (2.0, 0.0, 2.0),
+        (2.0, 1.0, 2.0),
+        (1.0, 1.0, 2.0),
+    ] {
+        coords.push([x, y, z]);
+    }
+    // Fix node numbering: nodes 8..16 unused placeholders.
+    let mut all = coords[..8].to_vec();
+    all.extend((8..16).map(|i| [10.0 + i as f64, 0.0, 0.0]));
+    all.extend_from_slice(&coords[8..]);
+    // Element 1 bottom face uses nodes 5 (1,0,1) and 6 (1,1,1) of element 0.
+    let e1 = [5, 16, 17, 6, e1[4], e1[5], e1[6], e1[7]];
+    let mut m = Mesh {
+        coords: all,
+        elements: vec![[0, 1, 2, 3, 4, 5, 6, 7], e1],
+        element_region: vec![0, 0],
+        region_names: vec!["r".into()],
+        ..Default::default()
+    };
+    m.face_sets.insert(
+        "a".into(),
+        vec![
+            Face {
+                element: 0,
+                local: 1,
+            },
+            Face {
+                element: 1,
+                local: 0,
+            },
+        ],
+    );
+    m.face_sets.insert(
+        "b".into(),
+        vec![Face {
+            element: 1,
+            local: 1,
+        }],
+    );
+    let e = ContactSystem::new(
+        &m,
+        &[InterfaceSpec::new("i", "a", "b", 0.5, 0.5, 0.0)],
+        "c.toml",
+    )
+    .unwrap_err();
+    let msg = contact_message(e);
+    assert!(msg.contains("inconsistent normals at node"), "{msg}");
+}
+
+/// W6 block on an incline (frame along the incline: x down-slope, z normal): the block's
+/// bottom nodes (surface a, 1000 kg shared by four nodes, no elastic coupling needed since
+/// they move alike) on a fixed base. Returns (x displacement after `t_end`, friction work,
+/// kinetic energy, gravity work, final state counts of pairs and surface nodes).
+fn incline_run(
+    mesh: &Mesh,
+    spec: InterfaceSpec,
+    theta_deg: f64,
+    t_end: f64,
+) -> (f64, f64, f64, f64, ([usize; 4], [usize; 4])) {
+    let g = 9.81;
+    let th = theta_deg.to_radians();
+    let mut sys = ContactSystem::new(mesh, std::slice::from_ref(&spec), "w6.toml").unwrap();
+    let n = mesh.n_nodes();
+    let slaves: Vec<u32> = sys.pairs(0).iter().map(|p| p.0).collect();
+    assert_eq!(slaves.len(), 4);
+    let mut w = vec![0.0; n];
+    let m_node = 250.0;
+    for &k in &slaves {
+        w[k as usize] = 1.0 / m_node;
+    }
+    let f = [m_node * g * th.sin(), 0.0, -m_node * g * th.cos()];
+    let dt = 1e-3;
+    let steps = (t_end / dt).round() as u64;
+    let mut u = vec![[0.0; 3]; n];
+    let mut v = vec![[0.0; 3]; n];
+    let mut up = u.clone();
+    let mut vp = v.clone();
+    let mut r = vec![[0.0; 3]; n];
+    let mut w_grav = 0.0;
+    for step in 0..steps {
+        for &k in sys.touched_nodes() {
+            r[k as usize] = [0.0; 3];
+        }
+        for k in 0..n {
+            let fk = if w[k] > 0.0 { f } else { [0.0; 3] };
+            vp[k] = geom::axpy(v[k], dt * w[k], fk);
+            up[k] = geom::axpy(u[k], dt, vp[k]);
+        }
+        let inp = ContactStepInput {
+            step,
+            time: step as f64 * dt,
+            dt,
+            inv_mass: &w,
+            coords: &mesh.coords,
+            u_old: &u,
+            u_pred: &up,
+            v_pred: &vp,
+        };
+        sys.compute(&inp, &mut r).unwrap();
+        for k in 0..n {
+            let un = geom::axpy(up[k], dt * dt * w[k], r[k]);
+            if w[k] > 0.0 {
+                w_grav += geom::dot(f, geom::sub(un, u[k]));
+            }
+            u[k] = un;
+            v[k] = geom::axpy(vp[k], dt * w[k], r[k]);
+        }
+    }
+    // Kinetic energy from the mid-step velocities averaged to the end time.
+    let mut ke = 0.0;
+    for &k in &slaves {
+        let vv = v[k as usize];
+        ke += 0.5 * m_node * geom::dot(vv, vv);
+    }
+    let x = slaves.iter().map(|&k| u[k as usize][0]).sum::<f64>() / 4.0;
+    (x, sys.friction_work(), ke, w_grav, sys.state_counts(0))
+}
+
+fn within(got: f64, want: f64, rel: f64) -> bool {
+    (got - want).abs() <= rel * want.abs()
+}
+
+#[test]
+fn w6_incline_point_to_point() {
+    let mesh = two_blocks();
+    // surface a = the block's bottom (top region), normal −z; base fixed.
+    let mut spec = InterfaceSpec::new("w6", "top-base", "base-top", 0.6, 0.4, 0.0);
+    spec.slip_threshold = Some(100.0);
+    let (x, _, _, _, _) = incline_run(&mesh, spec.clone(), 30.0, 1.0);
+    assert!(x.abs() < 1e-12, "30°, μs = 0.6 must stick: x = {x}");
+    spec.mu_s = 0.5;
+    let (x, wf, ke, wg, counts) = incline_run(&mesh, spec.clone(), 30.0, 1.0);
+    assert!(within(x, 0.7534, 0.01), "x = {x}");
+    assert!(within(wf, 2560.12, 0.01), "friction {wf}");
+    assert!(within(ke, 1135.10, 0.01), "kinetic {ke}");
+    assert!(within(wg, 3695.22, 0.01), "gravity {wg}");
+    assert!((wg - wf - ke).abs() < 0.01 * wg, "balance {wg} {wf} {ke}");
+    assert_eq!(counts.0, [0, 0, 4, 0]);
+    spec.mu_s = 0.3;
+    spec.mu_d = 0.25;
+    let (x, ..) = incline_run(&mesh, spec, 20.0, 1.0);
+    assert!(within(x, 0.5 * 1.0506, 0.01), "x = {x}");
+}
+
+/// Base 4 × 1 elements (x ∈ [0, 4]), block 1 × 1 at x ∈ [0.25, 1.25] resting on it:
+/// nodes do not coincide; the block slides across face boundaries.
+#[test]
+fn w6_incline_point_to_surface() {
+    let mesh = BoxMeshSpec {
+        blocks: vec![
+            block("base", [0.0; 3], [4.0, 1.0, 1.0], [4, 1, 1]),
+            block("top", [0.25, 0.0, 1.0], [1.0, 1.0, 1.0], [1, 1, 1]),
+        ],
+        split: vec![],
+        merge_tolerance: 1e-6,
+    }
+    .build("w6.toml")
+    .unwrap();
+    let mut spec = InterfaceSpec::new("w6", "top.zmin", "base.zmax", 0.5, 0.4, 0.0);
+    spec.mode = ContactMode::Surface;
+    let (x, wf, ke, wg, counts) = incline_run(&mesh, spec.clone(), 30.0, 1.0);
+    assert!(within(x, 0.7534, 0.01), "x = {x}");
+    assert!(within(wf, 2560.12, 0.01), "friction {wf}");
+    assert!(within(ke, 1135.10, 0.01), "kinetic {ke}");
+    assert!((wg - wf - ke).abs() < 0.01 * wg, "balance {wg} {wf} {ke}");
+    assert_eq!(counts.1, [0, 0, 4, 0]);
+    spec.mu_s = 0.6;
+    let (x, ..) = incline_run(&mesh, spec, 30.0, 0.5);
+    assert!(x.abs() < 1e-9, "30°, μs = 0.6 must stick: x = {x}");
+}
+
+/// Paired block that slides past its threshold continues in point-to-surface contact over
+/// a larger base (surface b extends beyond surface a).
+#[test]
+fn w6_pairs_switch_to_surface_after_large_slip() {
+    let mesh = BoxMeshSpec {
+        blocks: vec![
+            block("base", [0.0; 3], [4.0, 1.0, 1.0], [4, 1, 1]),
+            block("top", [0.0, 0.0, 1.0], [1.0, 1.0, 1.0], [1, 1, 1]),
+        ],
+        split: vec![["base".into(), "top".into()]],
+        merge_tolerance: 1e-6,
+    }
+    .build("w6.toml")
+    .unwrap();
+    let mut spec = InterfaceSpec::new("w6", "top.zmin", "base.zmax", 0.5, 0.4, 0.0);
+    let e = ContactSystem::new(&mesh, std::slice::from_ref(&spec), "w6.toml").unwrap_err();
+    assert!(e.to_string().contains("b_may_extend"), "{e}");
+    spec.b_may_extend = true;
+    spec.slip_threshold = Some(0.05);
+    let (x, wf, ke, _, counts) = incline_run(&mesh, spec, 30.0, 1.0);
+    assert!(within(x, 0.7534, 0.01), "x = {x}");
+    assert!(within(wf, 2560.12, 0.01), "friction {wf}");
+    assert!(within(ke, 1135.10, 0.01), "kinetic {ke}");
+    assert_eq!(counts, ([0; 4], [0, 0, 4, 0]));
+}

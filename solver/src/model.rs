@@ -65,6 +65,8 @@ pub struct Model {
     pub stable: StableStep,
     /// (group, index in group) of every element.
     pub element_location: Vec<(u32, u32)>,
+    /// Contact interfaces (dynamic contact force method), if any.
+    pub contact: Option<crate::contact::ContactSystem>,
 }
 
 impl Model {
@@ -156,6 +158,7 @@ impl Model {
         }
         let n = mesh.n_nodes();
         Ok(Self {
+            contact: None,
             element_location,
             mesh,
             groups,

@@ -292,6 +292,11 @@ fn build(file: CaseFile, label: &str, dir: &Path) -> Result<Case> {
             }
         }
     }
+    // Contact interfaces.
+    if !file.interfaces.is_empty() {
+        let system = crate::contact::ContactSystem::new(&model.mesh, &file.interfaces, label)?;
+        model.contact = Some(system);
+    }
     // Boundary conditions.
     for (k, f) in file.boundary.fixed.iter().enumerate() {
         let mask = dof_mask(label, &format!("boundary.fixed[{k}].dofs"), &f.dofs)?;

@@ -32,6 +32,9 @@ pub struct CaseFile {
     pub damping: DampingSection,
     #[serde(default)]
     pub initial: InitialSection,
+    /// Contact interfaces (`[[interfaces]]`), see docs/contact.md.
+    #[serde(default)]
+    pub interfaces: Vec<crate::contact::InterfaceSpec>,
 }
 
 /// `[time]`.

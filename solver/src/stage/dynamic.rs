@@ -19,6 +19,7 @@
 
 use rayon::prelude::*;
 
+use crate::contact::ContactStepInput;
 use crate::element::groups::ForceSettings;
 use crate::error::{DcfmError, Result};
 use crate::model::Model;
@@ -242,16 +243,15 @@ impl Simulation {
                 g.acceleration.map(|a| a * h)
             })
             .unwrap_or([0.0; 3]);
-        let model = &self.model;
         let ctx = NodeContext {
             dt,
             t,
             alpha,
             gravity,
-            mass: &model.mass,
-            constrained: &model.constraints.constrained,
-            fixed: &model.constraints.fixed,
-            prescribed: &model.constraints.prescribed,
+            mass: &self.model.mass,
+            constrained: &self.model.constraints.constrained,
+            fixed: &self.model.constraints.fixed,
+            prescribed: &self.model.constraints.prescribed,
             prescribed_of: &self.prescribed_of,
             u: &self.u,
             v: &self.v,
@@ -288,7 +288,26 @@ impl Simulation {
                 *res = out;
             });
         debug_assert_eq!(n, self.u_next.len());
-        // 4–5. Contact correction at the touched nodes (with the energy fix-up).
+        // 4. Contact forces Rⁿ from the predictor (eqs. 5–22).
+        for &i in &self.contact_nodes {
+            self.r[i as usize] = [0.0; 3];
+        }
+        self.contact_nodes.clear();
+        if let Some(contact) = self.model.contact.as_mut() {
+            let input = ContactStepInput {
+                step: self.step,
+                time: t,
+                dt,
+                inv_mass: &self.model.inv_mass,
+                coords: &self.model.mesh.coords,
+                u_old: &self.u,
+                u_pred: &self.u_next,
+                v_pred: &self.v_next,
+            };
+            contact.compute(&input, &mut self.r)?;
+            self.contact_nodes.extend_from_slice(contact.touched_nodes());
+        }
+        // 5. Correction at the touched nodes (with the energy fix-up).
         let mut contact_fix: EnergyParts = [0.0; 11];
         for &i in &self.contact_nodes {
             let i = i as usize;
@@ -401,15 +420,6 @@ impl Simulation {
     /// Internal force vector of the last step (for reactions and checks).
     pub fn internal_force(&self) -> &[[f64; 3]] {
         &self.f_int
-    }
-
-    /// Contact forces: set the nodes whose R may be non-zero this step and get the array
-    /// to fill (zeroed at those nodes of the previous step first).
-    pub fn contact_buffer(&mut self) -> (&mut Vec<u32>, &mut [[f64; 3]]) {
-        for &i in &self.contact_nodes {
-            self.r[i as usize] = [0.0; 3];
-        }
-        (&mut self.contact_nodes, &mut self.r)
     }
 }
 

@@ -1,1 +1,24 @@
 //! Benchmark support for dcfm.
+//!
+//! - [`cube`]: the structured elastic cubes every benchmark times;
+//! - [`runner`]: the whole-run throughput runner behind the `throughput` binary;
+//! - [`record`]: one JSON record per timed configuration;
+//! - [`history`]: the append-only `benchmarks/history.jsonl` of those records;
+//! - [`speedup`] and [`targets`]: what the runner prints at the end (thread speed-ups and
+//!   the throughput targets of issue #2);
+//! - [`git`], [`timestamp`]: provenance of a record (commit, UTC time);
+//! - [`error`]: the runner's error type.
+
+pub mod cube;
+pub mod error;
+pub mod git;
+pub mod history;
+pub mod record;
+pub mod runner;
+pub mod speedup;
+pub mod targets;
+pub mod timestamp;
+
+pub use error::BenchError;
+pub use record::ThroughputRecord;
+pub use runner::{run, RunConfig};

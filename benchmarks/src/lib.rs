@@ -7,8 +7,10 @@
 //! - [`speedup`] and [`targets`]: what the runner prints at the end (thread speed-ups and
 //!   the throughput targets of issue #2);
 //! - [`git`], [`timestamp`]: provenance of a record (commit, UTC time);
+//! - [`cputime`]: CPU time of the process, to flag runs starved by other processes;
 //! - [`error`]: the runner's error type.
 
+pub mod cputime;
 pub mod cube;
 pub mod error;
 pub mod git;

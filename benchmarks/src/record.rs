@@ -54,6 +54,11 @@ pub struct ThroughputRecord {
     /// Logical CPUs the machine offered (for comparing records across machines).
     #[serde(default)]
     pub cpus: usize,
+    /// CPU seconds the process used during the timed steps over (wall_s × threads): about 1
+    /// on an otherwise idle machine, lower when other processes took the cores (the
+    /// throughput is then understated). Absent where the CPU time cannot be read.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cpu_share: Option<f64>,
     /// `quick` (CI smoke sizes) or `standard`.
     #[serde(default)]
     pub mode: String,

@@ -11,7 +11,7 @@ use dcfm::stage::Simulation;
 use crate::cube::CubeSpec;
 use crate::error::BenchError;
 use crate::record::ThroughputRecord;
-use crate::{git, history, timestamp};
+use crate::{cputime, git, history, timestamp};
 
 /// What to run and how long.
 #[derive(Clone, Debug, PartialEq)]
@@ -119,6 +119,8 @@ pub struct Timing {
     pub steps: u64,
     /// Their wall time.
     pub wall: Duration,
+    /// CPU time the process used meanwhile (s), where it can be read.
+    pub cpu_s: Option<f64>,
 }
 
 /// Step `sim` `warmup` times untimed, then until `min_wall` has passed and at least
@@ -131,16 +133,16 @@ pub fn time_steps(
     max_steps: u64,
 ) -> dcfm::Result<Timing> {
     sim.run_steps(warmup)?;
+    let cpu0 = cputime::process_cpu_seconds();
     let start = Instant::now();
     let mut steps = 0;
     while steps < min_steps || (steps < max_steps && start.elapsed() < min_wall) {
         sim.step()?;
         steps += 1;
     }
-    Ok(Timing {
-        steps,
-        wall: start.elapsed(),
-    })
+    let wall = start.elapsed();
+    let cpu_s = cputime::process_cpu_seconds().zip(cpu0).map(|(b, a)| b - a);
+    Ok(Timing { steps, wall, cpu_s })
 }
 
 /// Run every case of `config` on every thread count, calling `on_record` as each record is
@@ -201,6 +203,7 @@ pub fn run(
                 commit: commit.clone(),
                 timestamp: timestamp::utc_now(),
                 cpus,
+                cpu_share: timing.cpu_s.map(|c| c / (wall_s * threads as f64)),
                 mode: config.mode.clone(),
                 profile: profile.to_string(),
             };

@@ -83,6 +83,7 @@ mod tests {
             commit: "unknown".into(),
             timestamp: String::new(),
             cpus: 2,
+            cpu_share: None,
             mode: "quick".into(),
             profile: "release".into(),
         }

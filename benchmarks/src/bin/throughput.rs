@@ -71,8 +71,20 @@ fn main() -> ExitCode {
         println!("{}", r.to_json_line());
         let _ = std::io::stdout().flush();
         eprintln!(
-            "{:<18} {} thread(s): {:>6} steps in {:6.2} s, {:9.3e} element-updates/s",
-            r.case, r.threads, r.steps, r.wall_s, r.element_updates_per_s
+            "{:<18} {} thread(s): {:>6} steps in {:6.2} s, {:9.3e} element-updates/s{}",
+            r.case,
+            r.threads,
+            r.steps,
+            r.wall_s,
+            r.element_updates_per_s,
+            match r.cpu_share {
+                Some(s) if s < 0.9 && r.wall_s >= 0.5 => format!(
+                    " (got {:.0}% of {} core(s): machine busy)",
+                    100.0 * s,
+                    r.threads
+                ),
+                _ => String::new(),
+            }
         );
     }) {
         Ok(r) => r,

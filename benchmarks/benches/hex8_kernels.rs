@@ -8,6 +8,9 @@
 //! set), gathering displacements and scattering forces through a 40³ connectivity like the
 //! solver does (serially, in mesh order, no colouring), so the gap between the two is the
 //! memory cost per element.
+//!
+//! `hex8_one_point/split_*` time the candidate kernel of `dcfm_benchmarks::split_uniform`
+//! (same forces from 304 instead of 464 bytes of geometry) on the same data.
 
 use std::hint::black_box;
 
@@ -15,6 +18,7 @@ use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use dcfm::element::hex8_full::{self, FullGeometry};
 use dcfm::element::hex8_uniform::{self, UniformGeometry};
 use dcfm::material::{Elastic, Material, PointContext};
+use dcfm_benchmarks::split_uniform::{self, SplitGeometry};
 
 /// A distorted 0.25 m hexahedron (node order of `hex8_shape::NODE_XI`), shifted by `s`.
 fn coords(s: f64) -> [[f64; 3]; 8] {
@@ -122,6 +126,43 @@ fn one_point(c: &mut Criterion) {
                 let ue: [[f64; 3]; 8] = std::array::from_fn(|a| us[nodes[a] as usize]);
                 let mut f = [[0.0; 3]; 8];
                 hex8_uniform::internal_force(g, &mat, &ue, &[], &mut [], &ctx, &mut f);
+                for (a, fa) in f.iter().enumerate() {
+                    let p = &mut f_int[nodes[a] as usize];
+                    p[0] += fa[0];
+                    p[1] += fa[1];
+                    p[2] += fa[2];
+                }
+            }
+            black_box(&mut f_int);
+        })
+    });
+
+    // Candidate kernel (Flanagan–Belytschko split form, 304 B/element), same forces.
+    let el = *mat.elastic();
+    let split = SplitGeometry::new(&x, &geo);
+    group.throughput(Throughput::Elements(1));
+    group.sample_size(100);
+    group.bench_function("split_single", |b| {
+        let mut f = [[0.0; 3]; 8];
+        b.iter(|| {
+            let s = split_uniform::internal_force(black_box(&split), &el, black_box(&u), &mut f);
+            black_box((&f, s));
+        })
+    });
+    let splits: Vec<SplitGeometry> = geos
+        .iter()
+        .enumerate()
+        .map(|(e, g)| SplitGeometry::new(&coords(e as f64), g))
+        .collect();
+    group.throughput(Throughput::Elements(STREAM as u64));
+    group.sample_size(20);
+    group.bench_function("split_stream_64000", |b| {
+        let mut f_int = vec![[0.0; 3]; us.len()];
+        b.iter(|| {
+            for (g, nodes) in splits.iter().zip(&conn) {
+                let ue: [[f64; 3]; 8] = std::array::from_fn(|a| us[nodes[a] as usize]);
+                let mut f = [[0.0; 3]; 8];
+                split_uniform::internal_force(g, &el, &ue, &mut f);
                 for (a, fa) in f.iter().enumerate() {
                     let p = &mut f_int[nodes[a] as usize];
                     p[0] += fa[0];

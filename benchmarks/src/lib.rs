@@ -8,6 +8,8 @@
 //!   the throughput targets of issue #2);
 //! - [`git`], [`timestamp`]: provenance of a record (commit, UTC time);
 //! - [`cputime`]: CPU time of the process, to flag runs starved by other processes;
+//! - [`split_uniform`]: a candidate one-point kernel (Flanagan–Belytschko split form) that
+//!   the kernel bench measures against the solver's, for issue #2;
 //! - [`error`]: the runner's error type.
 
 pub mod cputime;
@@ -18,6 +20,7 @@ pub mod history;
 pub mod record;
 pub mod runner;
 pub mod speedup;
+pub mod split_uniform;
 pub mod targets;
 pub mod timestamp;
 

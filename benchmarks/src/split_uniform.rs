@@ -61,6 +61,8 @@ impl SplitGeometry {
 
 /// Internal force of an elastic one-point element, written into `f`; returns the stress.
 /// Same result as `hex8_uniform::internal_force` to rounding.
+// The loops keep the index notation of the formulas above (a: node, i, j: axes, α: mode).
+#[allow(clippy::needless_range_loop)]
 #[inline(always)]
 pub fn internal_force(
     geo: &SplitGeometry,

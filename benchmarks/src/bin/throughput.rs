@@ -78,7 +78,7 @@ fn main() -> ExitCode {
             r.wall_s,
             r.element_updates_per_s,
             match r.cpu_share {
-                Some(s) if s < 0.9 && r.wall_s >= 0.5 => format!(
+                Some(s) if targets::starved(r) => format!(
                     " (got {:.0}% of {} core(s): machine busy)",
                     100.0 * s,
                     r.threads
@@ -112,10 +112,15 @@ fn main() -> ExitCode {
         eprintln!("\ntargets (issue #2):");
         for c in &checks {
             eprintln!(
-                "  [{}] {} (measured {:.3e})",
+                "  [{}] {} (measured {:.3e}){}",
                 if c.met { "met " } else { "MISS" },
                 c.target,
-                c.value
+                c.value,
+                if c.machine_busy && !c.met {
+                    " -- inconclusive: the machine was busy"
+                } else {
+                    ""
+                }
             );
         }
     }

@@ -10,7 +10,8 @@
 //! memory cost per element.
 //!
 //! `hex8_one_point/split_*` time the candidate kernel of `dcfm_benchmarks::split_uniform`
-//! (same forces from 304 instead of 464 bytes of geometry) on the same data.
+//! (same forces from 304 instead of 464 bytes of geometry) on the same data;
+//! `hex8_full/jinv_*` those of `dcfm_benchmarks::jinv_full` (640 instead of 1600 bytes).
 
 use std::hint::black_box;
 
@@ -18,6 +19,7 @@ use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use dcfm::element::hex8_full::{self, FullGeometry};
 use dcfm::element::hex8_uniform::{self, UniformGeometry};
 use dcfm::material::{Elastic, Material, PointContext};
+use dcfm_benchmarks::jinv_full::{self, JinvGeometry};
 use dcfm_benchmarks::split_uniform::{self, SplitGeometry};
 
 /// A distorted 0.25 m hexahedron (node order of `hex8_shape::NODE_XI`), shifted by `s`.
@@ -215,6 +217,50 @@ fn full(c: &mut Criterion) {
                 let ue: [[f64; 3]; 8] = std::array::from_fn(|a| us[nodes[a] as usize]);
                 let mut f = [[0.0; 3]; 8];
                 hex8_full::internal_force(g, &mat, &ue, &[], &mut [], &ctx, &mut f);
+                for (a, fa) in f.iter().enumerate() {
+                    let p = &mut f_int[nodes[a] as usize];
+                    p[0] += fa[0];
+                    p[1] += fa[1];
+                    p[2] += fa[2];
+                }
+            }
+            black_box(&mut f_int);
+        })
+    });
+
+    // Candidate kernel (J⁻¹ per Gauss point, 640 B/element), same forces.
+    let dn = jinv_full::natural_derivatives();
+    let jinv = JinvGeometry::new(&x).expect("valid element");
+    group.throughput(Throughput::Elements(1));
+    group.sample_size(100);
+    group.bench_function("jinv_single", |b| {
+        let mut f = [[0.0; 3]; 8];
+        b.iter(|| {
+            let s = jinv_full::internal_force(
+                black_box(&jinv),
+                &dn,
+                &mat,
+                black_box(&u),
+                &[],
+                &mut [],
+                &ctx,
+                &mut f,
+            );
+            black_box((&f, s));
+        })
+    });
+    let jinvs: Vec<JinvGeometry> = (0..STREAM)
+        .map(|e| JinvGeometry::new(&coords(e as f64)).expect("valid element"))
+        .collect();
+    group.throughput(Throughput::Elements(STREAM as u64));
+    group.sample_size(10);
+    group.bench_function("jinv_stream_64000", |b| {
+        let mut f_int = vec![[0.0; 3]; us.len()];
+        b.iter(|| {
+            for (g, nodes) in jinvs.iter().zip(&conn) {
+                let ue: [[f64; 3]; 8] = std::array::from_fn(|a| us[nodes[a] as usize]);
+                let mut f = [[0.0; 3]; 8];
+                jinv_full::internal_force(g, &dn, &mat, &ue, &[], &mut [], &ctx, &mut f);
                 for (a, fa) in f.iter().enumerate() {
                     let p = &mut f_int[nodes[a] as usize];
                     p[0] += fa[0];

@@ -10,6 +10,8 @@
 //! - [`cputime`]: CPU time of the process, to flag runs starved by other processes;
 //! - [`split_uniform`]: a candidate one-point kernel (Flanagan–Belytschko split form) that
 //!   the kernel bench measures against the solver's, for issue #2;
+//! - [`jinv_full`]: a candidate fully integrated kernel (J⁻¹ per Gauss point, 640 instead
+//!   of 1600 bytes per element), likewise;
 //! - [`error`]: the runner's error type.
 
 pub mod cputime;
@@ -17,6 +19,7 @@ pub mod cube;
 pub mod error;
 pub mod git;
 pub mod history;
+pub mod jinv_full;
 pub mod record;
 pub mod runner;
 pub mod speedup;

@@ -38,7 +38,7 @@ impl JinvGeometry {
         let mut wdet = [0.0; 8];
         for (g, p) in gauss_points().iter().enumerate() {
             let (j, det) = jacobian(x, &shape_derivatives(p));
-            if !(det > 0.0) {
+            if det.is_nan() || det <= 0.0 {
                 return None;
             }
             jinv[g] = inverse(&j, det);

@@ -1,1 +1,32 @@
 //! Benchmark support for dcfm.
+//!
+//! - [`cube`]: the structured elastic cubes every benchmark times;
+//! - [`runner`]: the whole-run throughput runner behind the `throughput` binary;
+//! - [`record`]: one JSON record per timed configuration;
+//! - [`history`]: the append-only `benchmarks/history.jsonl` of those records;
+//! - [`speedup`] and [`targets`]: what the runner prints at the end (thread speed-ups and
+//!   the throughput targets of issue #2);
+//! - [`git`], [`timestamp`]: provenance of a record (commit, UTC time);
+//! - [`cputime`]: CPU time of the process, to flag runs starved by other processes;
+//! - [`split_uniform`]: a candidate one-point kernel (Flanagan–Belytschko split form) that
+//!   the kernel bench measures against the solver's, for issue #2;
+//! - [`jinv_full`]: a candidate fully integrated kernel (J⁻¹ per Gauss point, 640 instead
+//!   of 1600 bytes per element), likewise;
+//! - [`error`]: the runner's error type.
+
+pub mod cputime;
+pub mod cube;
+pub mod error;
+pub mod git;
+pub mod history;
+pub mod jinv_full;
+pub mod record;
+pub mod runner;
+pub mod speedup;
+pub mod split_uniform;
+pub mod targets;
+pub mod timestamp;
+
+pub use error::BenchError;
+pub use record::ThroughputRecord;
+pub use runner::{run, RunConfig};

@@ -1,0 +1,24 @@
+//! One explicit step (`Simulation::step`) of the 20³ one-point elastic cube of the
+//! throughput runner (8 000 elements, 9 261 nodes), on rayon's global pool: element forces
+//! colour by colour, the node pass (predictor, energies, instability check) and the commit.
+
+use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use dcfm::element::Integration;
+use dcfm_benchmarks::cube::CubeSpec;
+
+fn step_20_one_point(c: &mut Criterion) {
+    let spec = CubeSpec::new(20, Integration::OnePoint);
+    let mut sim = spec.simulation().expect("the benchmark cube builds");
+    // Let the waves from the fixed base cross the cube so every element strains.
+    sim.run_steps(spec.divisions as u64 + 5)
+        .expect("stable warm-up");
+    let mut group = c.benchmark_group("full_step");
+    group.throughput(Throughput::Elements(spec.elements() as u64));
+    group.bench_function("cube20_one_point", |b| {
+        b.iter(|| sim.step().expect("stable step"))
+    });
+    group.finish();
+}
+
+criterion_group!(benches, step_20_one_point);
+criterion_main!(benches);

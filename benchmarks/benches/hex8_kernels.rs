@@ -1,0 +1,278 @@
+//! Internal-force kernels of one hex8 element, elastic material:
+//! - `one_point`: uniform-strain gradient + Flanagan–Belytschko hourglass forces
+//!   (`hex8_uniform::internal_force`);
+//! - `full`: 2×2×2 Gauss points (`hex8_full::internal_force`).
+//!
+//! `*/single` runs one element whose data stays in L1 (pure arithmetic cost);
+//! `*/stream_64000` sweeps the geometry of 64 000 distinct elements (the 40³ cube's working
+//! set), gathering displacements and scattering forces through a 40³ connectivity like the
+//! solver does (serially, in mesh order, no colouring), so the gap between the two is the
+//! memory cost per element.
+//!
+//! `hex8_one_point/split_*` time the candidate kernel of `dcfm_benchmarks::split_uniform`
+//! (same forces from 304 instead of 464 bytes of geometry) on the same data;
+//! `hex8_full/jinv_*` those of `dcfm_benchmarks::jinv_full` (640 instead of 1600 bytes).
+
+use std::hint::black_box;
+
+use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use dcfm::element::hex8_full::{self, FullGeometry};
+use dcfm::element::hex8_uniform::{self, UniformGeometry};
+use dcfm::material::{Elastic, Material, PointContext};
+use dcfm_benchmarks::jinv_full::{self, JinvGeometry};
+use dcfm_benchmarks::split_uniform::{self, SplitGeometry};
+
+/// A distorted 0.25 m hexahedron (node order of `hex8_shape::NODE_XI`), shifted by `s`.
+fn coords(s: f64) -> [[f64; 3]; 8] {
+    let h = 0.25;
+    let x = [
+        [0.0, 0.0, 0.0],
+        [h, 0.01, -0.005],
+        [1.05 * h, 0.98 * h, 0.0],
+        [0.02, h, 0.01],
+        [0.0, 0.01, h],
+        [0.97 * h, 0.0, 1.02 * h],
+        [h, h, h],
+        [-0.01, 1.03 * h, 0.99 * h],
+    ];
+    x.map(|p| [p[0] + s, p[1], p[2]])
+}
+
+/// A smooth, non-trivial displacement of the element's nodes.
+fn displacements(x: &[[f64; 3]; 8]) -> [[f64; 3]; 8] {
+    x.map(|p| {
+        [
+            1e-4 * p[1] + 2e-5 * p[0] * p[2],
+            -3e-5 * p[0] + 1e-5 * p[2],
+            5e-5 * p[2] + 1e-5 * p[0] * p[1],
+        ]
+    })
+}
+
+fn material() -> Material {
+    Material::Elastic(Elastic::new("rock", 20e9, 0.25, 2700.0).expect("valid elastic constants"))
+}
+
+const STREAM: usize = 64_000;
+
+/// Connectivity of `STREAM` elements over a pool of displacement "nodes", each element
+/// reading 8 nodes spread through the array like a structured mesh does.
+fn stream_setup() -> (Vec<[u32; 8]>, Vec<[f64; 3]>) {
+    let n = 40usize;
+    let np = n + 1;
+    let node = |i: usize, j: usize, k: usize| (i + np * (j + np * k)) as u32;
+    let mut conn = Vec::with_capacity(STREAM);
+    for k in 0..n {
+        for j in 0..n {
+            for i in 0..n {
+                conn.push([
+                    node(i, j, k),
+                    node(i + 1, j, k),
+                    node(i + 1, j + 1, k),
+                    node(i, j + 1, k),
+                    node(i, j, k + 1),
+                    node(i + 1, j, k + 1),
+                    node(i + 1, j + 1, k + 1),
+                    node(i, j + 1, k + 1),
+                ]);
+            }
+        }
+    }
+    let u = (0..np * np * np)
+        .map(|i| {
+            let t = i as f64 * 1e-3;
+            [1e-5 * t.sin(), 1e-5 * t.cos(), 1e-6 * t]
+        })
+        .collect();
+    (conn, u)
+}
+
+fn one_point(c: &mut Criterion) {
+    let mat = material();
+    let ctx = PointContext {
+        char_length: 0.25,
+        dt: 1e-5,
+    };
+    let x = coords(0.0);
+    let geo = UniformGeometry::new(&x, mat.elastic(), 0.05).expect("valid element");
+    let u = displacements(&x);
+    let mut group = c.benchmark_group("hex8_one_point");
+    group.throughput(Throughput::Elements(1));
+    group.bench_function("single", |b| {
+        let mut f = [[0.0; 3]; 8];
+        b.iter(|| {
+            let s = hex8_uniform::internal_force(
+                black_box(&geo),
+                &mat,
+                black_box(&u),
+                &[],
+                &mut [],
+                &ctx,
+                &mut f,
+            );
+            black_box((&f, s));
+        })
+    });
+    let (conn, us) = stream_setup();
+    let geos: Vec<UniformGeometry> = (0..STREAM)
+        .map(|e| {
+            UniformGeometry::new(&coords(e as f64), mat.elastic(), 0.05).expect("valid element")
+        })
+        .collect();
+    group.throughput(Throughput::Elements(STREAM as u64));
+    group.sample_size(20);
+    group.bench_function("stream_64000", |b| {
+        let mut f_int = vec![[0.0; 3]; us.len()];
+        b.iter(|| {
+            for (g, nodes) in geos.iter().zip(&conn) {
+                let ue: [[f64; 3]; 8] = std::array::from_fn(|a| us[nodes[a] as usize]);
+                let mut f = [[0.0; 3]; 8];
+                hex8_uniform::internal_force(g, &mat, &ue, &[], &mut [], &ctx, &mut f);
+                for (a, fa) in f.iter().enumerate() {
+                    let p = &mut f_int[nodes[a] as usize];
+                    p[0] += fa[0];
+                    p[1] += fa[1];
+                    p[2] += fa[2];
+                }
+            }
+            black_box(&mut f_int);
+        })
+    });
+
+    // Candidate kernel (Flanagan–Belytschko split form, 304 B/element), same forces.
+    let el = *mat.elastic();
+    let split = SplitGeometry::new(&x, &geo);
+    group.throughput(Throughput::Elements(1));
+    group.sample_size(100);
+    group.bench_function("split_single", |b| {
+        let mut f = [[0.0; 3]; 8];
+        b.iter(|| {
+            let s = split_uniform::internal_force(black_box(&split), &el, black_box(&u), &mut f);
+            black_box((&f, s));
+        })
+    });
+    let splits: Vec<SplitGeometry> = geos
+        .iter()
+        .enumerate()
+        .map(|(e, g)| SplitGeometry::new(&coords(e as f64), g))
+        .collect();
+    group.throughput(Throughput::Elements(STREAM as u64));
+    group.sample_size(20);
+    group.bench_function("split_stream_64000", |b| {
+        let mut f_int = vec![[0.0; 3]; us.len()];
+        b.iter(|| {
+            for (g, nodes) in splits.iter().zip(&conn) {
+                let ue: [[f64; 3]; 8] = std::array::from_fn(|a| us[nodes[a] as usize]);
+                let mut f = [[0.0; 3]; 8];
+                split_uniform::internal_force(g, &el, &ue, &mut f);
+                for (a, fa) in f.iter().enumerate() {
+                    let p = &mut f_int[nodes[a] as usize];
+                    p[0] += fa[0];
+                    p[1] += fa[1];
+                    p[2] += fa[2];
+                }
+            }
+            black_box(&mut f_int);
+        })
+    });
+    group.finish();
+}
+
+fn full(c: &mut Criterion) {
+    let mat = material();
+    let ctx = PointContext {
+        char_length: 0.25,
+        dt: 1e-5,
+    };
+    let x = coords(0.0);
+    let geo = FullGeometry::new(&x).expect("valid element");
+    let u = displacements(&x);
+    let mut group = c.benchmark_group("hex8_full");
+    group.throughput(Throughput::Elements(1));
+    group.bench_function("single", |b| {
+        let mut f = [[0.0; 3]; 8];
+        b.iter(|| {
+            let s = hex8_full::internal_force(
+                black_box(&geo),
+                &mat,
+                black_box(&u),
+                &[],
+                &mut [],
+                &ctx,
+                &mut f,
+            );
+            black_box((&f, s));
+        })
+    });
+    let (conn, us) = stream_setup();
+    let geos: Vec<FullGeometry> = (0..STREAM)
+        .map(|e| FullGeometry::new(&coords(e as f64)).expect("valid element"))
+        .collect();
+    group.throughput(Throughput::Elements(STREAM as u64));
+    group.sample_size(10);
+    group.bench_function("stream_64000", |b| {
+        let mut f_int = vec![[0.0; 3]; us.len()];
+        b.iter(|| {
+            for (g, nodes) in geos.iter().zip(&conn) {
+                let ue: [[f64; 3]; 8] = std::array::from_fn(|a| us[nodes[a] as usize]);
+                let mut f = [[0.0; 3]; 8];
+                hex8_full::internal_force(g, &mat, &ue, &[], &mut [], &ctx, &mut f);
+                for (a, fa) in f.iter().enumerate() {
+                    let p = &mut f_int[nodes[a] as usize];
+                    p[0] += fa[0];
+                    p[1] += fa[1];
+                    p[2] += fa[2];
+                }
+            }
+            black_box(&mut f_int);
+        })
+    });
+
+    // Candidate kernel (J⁻¹ per Gauss point, 640 B/element), same forces.
+    let dn = jinv_full::natural_derivatives();
+    let jinv = JinvGeometry::new(&x).expect("valid element");
+    group.throughput(Throughput::Elements(1));
+    group.sample_size(100);
+    group.bench_function("jinv_single", |b| {
+        let mut f = [[0.0; 3]; 8];
+        b.iter(|| {
+            let s = jinv_full::internal_force(
+                black_box(&jinv),
+                &dn,
+                &mat,
+                black_box(&u),
+                &[],
+                &mut [],
+                &ctx,
+                &mut f,
+            );
+            black_box((&f, s));
+        })
+    });
+    let jinvs: Vec<JinvGeometry> = (0..STREAM)
+        .map(|e| JinvGeometry::new(&coords(e as f64)).expect("valid element"))
+        .collect();
+    group.throughput(Throughput::Elements(STREAM as u64));
+    group.sample_size(10);
+    group.bench_function("jinv_stream_64000", |b| {
+        let mut f_int = vec![[0.0; 3]; us.len()];
+        b.iter(|| {
+            for (g, nodes) in jinvs.iter().zip(&conn) {
+                let ue: [[f64; 3]; 8] = std::array::from_fn(|a| us[nodes[a] as usize]);
+                let mut f = [[0.0; 3]; 8];
+                jinv_full::internal_force(g, &dn, &mat, &ue, &[], &mut [], &ctx, &mut f);
+                for (a, fa) in f.iter().enumerate() {
+                    let p = &mut f_int[nodes[a] as usize];
+                    p[0] += fa[0];
+                    p[1] += fa[1];
+                    p[2] += fa[2];
+                }
+            }
+            black_box(&mut f_int);
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(benches, one_point, full);
+criterion_main!(benches);

@@ -1,0 +1,128 @@
+//! Whole-run throughput of the explicit solver on structured elastic cubes.
+//!
+//! ```text
+//! cargo run --release -p dcfm-benchmarks --bin throughput [-- --quick --no-record --filter cube40]
+//! ```
+//!
+//! Stdout: one JSON record per timed configuration (JSON Lines, pipe it to `jq`).
+//! Stderr: progress, the thread speed-ups of every case and the issue #2 targets.
+//! Every record is also appended to `benchmarks/history.jsonl` unless `--no-record`.
+
+use std::io::Write;
+use std::path::PathBuf;
+use std::process::ExitCode;
+
+use clap::Parser;
+use dcfm_benchmarks::{run, speedup, targets, RunConfig};
+
+#[derive(Debug, Parser)]
+#[command(about = "Time explicit steps on elastic hex8 cubes and record element-updates/s")]
+struct Cli {
+    /// CI smoke run: 4³ and 8³ cubes, a few steps each.
+    #[arg(long)]
+    quick: bool,
+    /// Do not append the records to the history file.
+    #[arg(long)]
+    no_record: bool,
+    /// Run only the cases whose name (e.g. `cube40_full`) contains this substring.
+    #[arg(long)]
+    filter: Option<String>,
+    /// Thread counts to time each case on (default 1,2).
+    #[arg(long, value_delimiter = ',')]
+    threads: Option<Vec<usize>>,
+    /// Cube divisions n, n³ elements (default 20,40; 4,8 with --quick).
+    #[arg(long, value_delimiter = ',')]
+    sizes: Option<Vec<usize>>,
+    /// Minimum timed wall time per configuration, seconds (default 2; 0.1 with --quick).
+    #[arg(long)]
+    min_wall: Option<f64>,
+    /// History file to append to (default <workspace>/benchmarks/history.jsonl).
+    #[arg(long)]
+    history: Option<PathBuf>,
+}
+
+fn main() -> ExitCode {
+    let cli = Cli::parse();
+    let mut config = if cli.quick {
+        RunConfig::quick()
+    } else {
+        RunConfig::standard()
+    };
+    config.filter = cli.filter;
+    if let Some(t) = cli.threads {
+        config.threads = t;
+    }
+    if let Some(s) = cli.sizes {
+        config.sizes = s;
+    }
+    if let Some(w) = cli.min_wall {
+        config.min_wall_s = w;
+    }
+    if let Some(h) = cli.history {
+        config.history = Some(h);
+    }
+    if cli.no_record {
+        config.history = None;
+    }
+    if let Some(path) = &config.history {
+        eprintln!("recording to {}", path.display());
+    }
+    let records = match run(&config, |r| {
+        println!("{}", r.to_json_line());
+        let _ = std::io::stdout().flush();
+        eprintln!(
+            "{:<18} {} thread(s): {:>6} steps in {:6.2} s, {:9.3e} element-updates/s{}",
+            r.case,
+            r.threads,
+            r.steps,
+            r.wall_s,
+            r.element_updates_per_s,
+            match r.cpu_share {
+                Some(s) if targets::starved(r) => format!(
+                    " (got {:.0}% of {} core(s): machine busy)",
+                    100.0 * s,
+                    r.threads
+                ),
+                _ => String::new(),
+            }
+        );
+    }) {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!("throughput: {e}");
+            return ExitCode::FAILURE;
+        }
+    };
+    let speedups = speedup::speedups(&records);
+    if !speedups.is_empty() {
+        eprintln!("\nspeed-up (element-updates/s on n threads / on the fewest threads):");
+        for s in &speedups {
+            eprintln!(
+                "  {:<18} {}/{} threads: {:.2}x (efficiency {:.0}%)",
+                s.case,
+                s.threads,
+                s.base_threads,
+                s.factor(),
+                100.0 * s.efficiency()
+            );
+        }
+    }
+    let checks = targets::check(&records);
+    if !checks.is_empty() {
+        eprintln!("\ntargets (issue #2):");
+        for c in &checks {
+            eprintln!(
+                "  [{}] {} (measured {:.3e}){}",
+                if c.met { "met " } else { "MISS" },
+                c.target,
+                c.value,
+                if c.machine_busy && !c.met {
+                    " -- inconclusive: the machine was busy"
+                } else {
+                    ""
+                }
+            );
+        }
+    }
+    ExitCode::SUCCESS
+}

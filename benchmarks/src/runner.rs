@@ -1,0 +1,218 @@
+//! The whole-run throughput runner: for every cube size × integration rule × thread count,
+//! build the model, warm up, time steps until a minimum wall time has passed, and emit one
+//! [`ThroughputRecord`] (optionally appended to the history file).
+
+use std::path::PathBuf;
+use std::time::{Duration, Instant};
+
+use dcfm::element::Integration;
+use dcfm::stage::Simulation;
+
+use crate::cube::CubeSpec;
+use crate::error::BenchError;
+use crate::record::ThroughputRecord;
+use crate::{cputime, git, history, timestamp};
+
+/// What to run and how long.
+#[derive(Clone, Debug, PartialEq)]
+pub struct RunConfig {
+    /// Cube divisions n (n³ elements), one case per size and integration rule.
+    pub sizes: Vec<usize>,
+    /// Integration rules.
+    pub integrations: Vec<Integration>,
+    /// Thread counts; each case is timed on each, in this order, on the same simulation.
+    pub threads: Vec<usize>,
+    /// Warm-up steps before each timing; `None`: n + 5, enough for the waves from the base
+    /// to reach the top so that every element is straining.
+    pub warmup_steps: Option<u64>,
+    /// Keep stepping until this much wall time has passed (s) ...
+    pub min_wall_s: f64,
+    /// ... and at least this many steps ...
+    pub min_steps: u64,
+    /// ... but never more than this many.
+    pub max_steps: u64,
+    /// Run only the cases whose name contains this substring.
+    pub filter: Option<String>,
+    /// Append every record to this file (`None`: do not record).
+    pub history: Option<PathBuf>,
+    /// Recorded as the record's `mode`.
+    pub mode: String,
+}
+
+impl RunConfig {
+    /// The standard run: 20³ and 40³, one-point and full, 1 and 2 threads, ≥ 2 s each,
+    /// recorded in `benchmarks/history.jsonl`.
+    pub fn standard() -> Self {
+        Self {
+            sizes: vec![20, 40],
+            integrations: vec![Integration::OnePoint, Integration::Full],
+            threads: vec![1, 2],
+            warmup_steps: None,
+            min_wall_s: 2.0,
+            min_steps: 10,
+            max_steps: 1_000_000,
+            filter: None,
+            history: Some(history::default_history_path()),
+            mode: "standard".to_string(),
+        }
+    }
+
+    /// The CI smoke run: 4³ and 8³, ≥ 0.1 s each (about a second in all).
+    pub fn quick() -> Self {
+        Self {
+            sizes: vec![4, 8],
+            min_wall_s: 0.1,
+            min_steps: 5,
+            max_steps: 200,
+            mode: "quick".to_string(),
+            ..Self::standard()
+        }
+    }
+
+    /// The cases to run, filter applied, in run order.
+    pub fn cases(&self) -> Vec<CubeSpec> {
+        let mut out = Vec::new();
+        for &n in &self.sizes {
+            for &integration in &self.integrations {
+                let spec = CubeSpec::new(n, integration);
+                if self
+                    .filter
+                    .as_deref()
+                    .is_none_or(|f| spec.name().contains(f))
+                {
+                    out.push(spec);
+                }
+            }
+        }
+        out
+    }
+
+    fn validate(&self) -> Result<(), BenchError> {
+        if self.sizes.contains(&0) {
+            return Err(BenchError::Config("cube sizes must be >= 1".into()));
+        }
+        if self.threads.is_empty() || self.threads.contains(&0) {
+            return Err(BenchError::Config(
+                "thread counts must be >= 1 (and at least one)".into(),
+            ));
+        }
+        if !(self.min_wall_s.is_finite() && self.min_wall_s >= 0.0) {
+            return Err(BenchError::Config(format!(
+                "min wall time {} s must be >= 0",
+                self.min_wall_s
+            )));
+        }
+        if self.min_steps == 0 || self.max_steps < self.min_steps {
+            return Err(BenchError::Config(format!(
+                "need 1 <= min steps ({}) <= max steps ({})",
+                self.min_steps, self.max_steps
+            )));
+        }
+        Ok(())
+    }
+}
+
+/// Steps and wall time of one timed run.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Timing {
+    /// Timed steps.
+    pub steps: u64,
+    /// Their wall time.
+    pub wall: Duration,
+    /// CPU time the process used meanwhile (s), where it can be read.
+    pub cpu_s: Option<f64>,
+}
+
+/// Step `sim` `warmup` times untimed, then until `min_wall` has passed and at least
+/// `min_steps` steps are done (at most `max_steps`).
+pub fn time_steps(
+    sim: &mut Simulation,
+    warmup: u64,
+    min_wall: Duration,
+    min_steps: u64,
+    max_steps: u64,
+) -> dcfm::Result<Timing> {
+    sim.run_steps(warmup)?;
+    let cpu0 = cputime::process_cpu_seconds();
+    let start = Instant::now();
+    let mut steps = 0;
+    while steps < min_steps || (steps < max_steps && start.elapsed() < min_wall) {
+        sim.step()?;
+        steps += 1;
+    }
+    let wall = start.elapsed();
+    let cpu_s = cputime::process_cpu_seconds().zip(cpu0).map(|(b, a)| b - a);
+    Ok(Timing { steps, wall, cpu_s })
+}
+
+/// Run every case of `config` on every thread count, calling `on_record` as each record is
+/// made (after it has been appended to the history file, when recording). Returns all of
+/// them in run order. An empty case list (filter matching nothing) is an error.
+pub fn run(
+    config: &RunConfig,
+    mut on_record: impl FnMut(&ThroughputRecord),
+) -> Result<Vec<ThroughputRecord>, BenchError> {
+    config.validate()?;
+    let cases = config.cases();
+    if cases.is_empty() {
+        return Err(BenchError::Config(format!(
+            "no case matches the filter {:?}",
+            config.filter.as_deref().unwrap_or("")
+        )));
+    }
+    let commit = git::commit_label(&history::workspace_root());
+    let cpus = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let profile = if cfg!(debug_assertions) {
+        "debug"
+    } else {
+        "release"
+    };
+    let mut records = Vec::new();
+    for spec in cases {
+        let mut sim = spec.simulation()?;
+        let warmup = config.warmup_steps.unwrap_or(spec.divisions as u64 + 5);
+        let bytes_per_element = sim.model.bytes_per_element();
+        let nodes = sim.model.mesh.n_nodes();
+        for &threads in &config.threads {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()?;
+            let timing = pool.install(|| {
+                time_steps(
+                    &mut sim,
+                    warmup,
+                    Duration::from_secs_f64(config.min_wall_s),
+                    config.min_steps,
+                    config.max_steps,
+                )
+            })?;
+            let wall_s = timing.wall.as_secs_f64().max(1e-9);
+            let steps_per_s = timing.steps as f64 / wall_s;
+            let record = ThroughputRecord {
+                case: spec.name(),
+                elements: spec.elements(),
+                nodes,
+                integration: spec.integration.name().to_string(),
+                threads,
+                steps: timing.steps,
+                wall_s,
+                steps_per_s,
+                element_updates_per_s: steps_per_s * spec.elements() as f64,
+                bytes_per_element,
+                dt_s: sim.dt,
+                commit: commit.clone(),
+                timestamp: timestamp::utc_now(),
+                cpus,
+                cpu_share: timing.cpu_s.map(|c| c / (wall_s * threads as f64)),
+                mode: config.mode.clone(),
+                profile: profile.to_string(),
+            };
+            if let Some(path) = &config.history {
+                history::append(path, &record)?;
+            }
+            on_record(&record);
+            records.push(record);
+        }
+    }
+    Ok(records)
+}

@@ -1,0 +1,91 @@
+//! The throughput targets of issue #2, checked against a set of records.
+
+use crate::record::ThroughputRecord;
+use crate::speedup::speedups;
+
+/// One-point 40³ on 2 threads: element updates per second.
+pub const ONE_POINT_40_RATE: f64 = 1.0e7;
+/// Fully integrated 40³ on 2 threads: element updates per second.
+pub const FULL_40_RATE: f64 = 4.0e6;
+/// 2 threads over 1 thread, every case.
+pub const TWO_THREAD_SPEEDUP: f64 = 1.7;
+/// The speed-up target applies to cases of at least this many elements (20³): below, the
+/// per-step fork/join overhead of rayon dominates and no one expects it to scale.
+pub const SPEEDUP_MIN_ELEMENTS: usize = 8000;
+/// Bytes per element, every case.
+pub const MAX_BYTES_PER_ELEMENT: f64 = 2048.0;
+
+/// A target and how the records fare against it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TargetCheck {
+    /// What is required, e.g. `cube40_full, 2 threads: >= 4.0e6 element-updates/s`.
+    pub target: String,
+    /// The measured value.
+    pub value: f64,
+    /// Whether the value meets the target.
+    pub met: bool,
+    /// Whether a timing behind the value got less than [`BUSY_CPU_SHARE`] of its cores
+    /// (other processes competed): a miss then says little about the code.
+    pub machine_busy: bool,
+}
+
+/// Below this CPU share (see `ThroughputRecord::cpu_share`) a timing counts as starved.
+pub const BUSY_CPU_SHARE: f64 = 0.9;
+
+/// Whether `r` was timed while other processes took a noticeable part of its cores (only
+/// judged for timings of 0.5 s or more: the CPU time has a resolution of 10 ms).
+pub fn starved(r: &ThroughputRecord) -> bool {
+    r.wall_s >= 0.5 && r.cpu_share.is_some_and(|s| s < BUSY_CPU_SHARE)
+}
+
+/// Check every target the records allow (a target whose case was not run is skipped).
+pub fn check(records: &[ThroughputRecord]) -> Vec<TargetCheck> {
+    let mut out = Vec::new();
+    for (case, min) in [
+        ("cube40_one_point", ONE_POINT_40_RATE),
+        ("cube40_full", FULL_40_RATE),
+    ] {
+        if let Some(r) = records
+            .iter()
+            .rev()
+            .find(|r| r.case == case && r.threads == 2)
+        {
+            out.push(TargetCheck {
+                target: format!("{case}, 2 threads: >= {min:.1e} element-updates/s"),
+                value: r.element_updates_per_s,
+                met: r.element_updates_per_s >= min,
+                machine_busy: starved(r),
+            });
+        }
+    }
+    for s in speedups(records) {
+        let big = records
+            .iter()
+            .any(|r| r.case == s.case && r.elements >= SPEEDUP_MIN_ELEMENTS);
+        if big && s.base_threads == 1 && s.threads == 2 {
+            let busy = records
+                .iter()
+                .any(|r| r.case == s.case && (r.threads == 1 || r.threads == 2) && starved(r));
+            out.push(TargetCheck {
+                target: format!("{}, 2 threads: >= {TWO_THREAD_SPEEDUP}x 1 thread", s.case),
+                value: s.factor(),
+                met: s.factor() >= TWO_THREAD_SPEEDUP,
+                machine_busy: busy,
+            });
+        }
+    }
+    let mut seen: Vec<&str> = Vec::new();
+    for r in records {
+        if seen.contains(&r.case.as_str()) {
+            continue;
+        }
+        seen.push(&r.case);
+        out.push(TargetCheck {
+            target: format!("{}: bytes/element < {MAX_BYTES_PER_ELEMENT}", r.case),
+            value: r.bytes_per_element,
+            met: r.bytes_per_element < MAX_BYTES_PER_ELEMENT,
+            machine_busy: false,
+        });
+    }
+    out
+}

@@ -1,0 +1,140 @@
+//! The throughput runner in quick mode on a tiny cube: every record carries every key of the
+//! history contract with sane values, the history file gets one line per record and reads
+//! back unchanged, and a filter that matches nothing is an error. Correctness only: no
+//! assertion on how fast anything is.
+
+use std::path::PathBuf;
+
+use dcfm::element::Integration;
+use dcfm_benchmarks::record::REQUIRED_KEYS;
+use dcfm_benchmarks::{history, run, speedup, targets, RunConfig};
+
+fn scratch_history(tag: &str) -> PathBuf {
+    let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
+    let path = dir.join(format!("history-{tag}-{}.jsonl", std::process::id()));
+    let _ = std::fs::remove_file(&path);
+    path
+}
+
+fn tiny(history: Option<PathBuf>) -> RunConfig {
+    RunConfig {
+        sizes: vec![3],
+        threads: vec![1, 2],
+        min_wall_s: 0.0,
+        min_steps: 4,
+        max_steps: 8,
+        history,
+        ..RunConfig::quick()
+    }
+}
+
+#[test]
+fn quick_run_records_every_key_with_sane_values() {
+    let path = scratch_history("keys");
+    let mut printed = Vec::new();
+    let records = run(&tiny(Some(path.clone())), |r| {
+        printed.push(r.to_json_line())
+    })
+    .expect("quick run");
+    assert_eq!(records.len(), 4, "2 integrations x 2 thread counts");
+    assert_eq!(printed.len(), records.len());
+
+    for (r, line) in records.iter().zip(&printed) {
+        let v: serde_json::Value = serde_json::from_str(line).expect("each printed line is JSON");
+        let obj = v.as_object().expect("a JSON object");
+        for key in REQUIRED_KEYS {
+            assert!(obj.contains_key(key), "missing key {key} in {line}");
+        }
+        assert!(r.case.starts_with("cube3_"), "{}", r.case);
+        assert_eq!(r.elements, 27);
+        assert_eq!(r.nodes, 64);
+        assert!(r.integration == "one_point" || r.integration == "full");
+        assert!(r.case.ends_with(&r.integration));
+        assert!(r.threads == 1 || r.threads == 2);
+        assert!((4..=8).contains(&r.steps), "steps {}", r.steps);
+        assert!(r.wall_s > 0.0 && r.wall_s.is_finite());
+        assert!((r.steps_per_s * r.wall_s - r.steps as f64).abs() < 1e-6 * r.steps as f64);
+        let rate = r.steps_per_s * r.elements as f64;
+        assert!((r.element_updates_per_s - rate).abs() <= 1e-9 * rate);
+        assert!(r.bytes_per_element > 0.0 && r.bytes_per_element < 2048.0);
+        assert!(r.dt_s > 0.0);
+        assert!(!r.commit.is_empty());
+        assert!(r.commit == "unknown" || r.commit.chars().next().unwrap().is_ascii_hexdigit());
+        let ts = &r.timestamp;
+        assert!(
+            ts.len() == 20 && ts.ends_with('Z') && &ts[10..11] == "T",
+            "timestamp {ts}"
+        );
+        assert_eq!(r.mode, "quick");
+        assert!(r.cpus >= 1);
+    }
+    // One-point elements hold less than fully integrated ones.
+    let bpe = |i: &str| {
+        records
+            .iter()
+            .find(|r| r.integration == i)
+            .unwrap()
+            .bytes_per_element
+    };
+    assert!(bpe("one_point") < bpe("full"));
+
+    // The history file holds exactly these records, one per line; a second run appends.
+    // (serde_json parses floats to within an ulp, not always bit-exactly.)
+    let back = history::read(&path).expect("history reads back");
+    assert_eq!(back.len(), records.len());
+    for (b, r) in back.iter().zip(&records) {
+        assert_eq!(
+            (&b.case, b.threads, b.steps, &b.commit, &b.timestamp),
+            (&r.case, r.threads, r.steps, &r.commit, &r.timestamp)
+        );
+        assert!(
+            (b.element_updates_per_s - r.element_updates_per_s).abs()
+                <= 1e-12 * r.element_updates_per_s
+        );
+        assert_eq!(b.bytes_per_element, r.bytes_per_element);
+    }
+    run(&tiny(Some(path.clone())), |_| {}).expect("second quick run");
+    assert_eq!(history::read(&path).unwrap().len(), 8);
+    let text = std::fs::read_to_string(&path).unwrap();
+    assert_eq!(text.lines().count(), 8);
+    assert!(text.ends_with('\n'));
+    std::fs::remove_file(&path).ok();
+
+    // Speed-ups pair each case's 2-thread run with its 1-thread run.
+    let s = speedup::speedups(&records);
+    assert_eq!(s.len(), 2);
+    assert!(s
+        .iter()
+        .all(|s| s.threads == 2 && s.base_threads == 1 && s.factor() > 0.0));
+    // Bytes/element targets are checked for every case; 40³ rate targets are skipped.
+    let checks = targets::check(&records);
+    assert!(checks
+        .iter()
+        .any(|c| c.target.contains("bytes/element") && c.met));
+    assert!(!checks.iter().any(|c| c.target.contains("cube40")));
+}
+
+#[test]
+fn filter_and_no_record() {
+    let config = RunConfig {
+        filter: Some("full".into()),
+        threads: vec![1],
+        ..tiny(None)
+    };
+    assert_eq!(config.cases().len(), 1);
+    assert_eq!(config.cases()[0].integration, Integration::Full);
+    let records = run(&config, |_| {}).expect("filtered run");
+    assert_eq!(records.len(), 1);
+    assert_eq!(records[0].case, "cube3_full");
+
+    let none = RunConfig {
+        filter: Some("no-such-case".into()),
+        ..tiny(None)
+    };
+    assert!(run(&none, |_| {}).is_err());
+    let zero_threads = RunConfig {
+        threads: vec![0],
+        ..tiny(None)
+    };
+    assert!(run(&zero_threads, |_| {}).is_err());
+}

@@ -9,8 +9,8 @@
 //!
 //! (the brackets keep the variables monotone when the dilatant potential makes every
 //! principal plastic strain rate positive). The local system is thereby condensed to one
-//! scalar equation F(Δλ) = 0 of eq. (25), solved by a bracketing Illinois (regula falsi)
-//! iteration: bounded, derivative free, and always left on the admissible side F ≤ 0.
+//! scalar equation F(Δλ) = 0 of eq. (25), solved by a bracketing Anderson–Björck
+//! (regula falsi) iteration: bounded, derivative free, and always left on the admissible side F ≤ 0.
 
 use super::hardening::SofteningLaw;
 use super::potential::Potential;
@@ -117,7 +117,7 @@ impl LocalProblem<'_> {
             at_hi.converged = true;
             return at_hi;
         }
-        // Illinois iteration on [a, b] with F(a) > 0 ≥ F(b).
+        // Regula falsi (Anderson–Björck) on [a, b] with F(a) > 0 ≥ F(b).
         let (mut b, mut fb) = (hi, at_hi.f);
         let mut best = at_hi;
         let mut side = 0i8;
@@ -136,20 +136,24 @@ impl LocalProblem<'_> {
                     ..at_c
                 };
             }
+            // Anderson–Björck: when the same end is kept twice, scale its value by
+            // 1 − F(c)/F(replaced end) (0.5 when that is not positive).
             if at_c.f > 0.0 {
+                if side == 1 {
+                    let k = 1.0 - at_c.f / fa;
+                    fb *= if k > 0.0 { k } else { 0.5 };
+                }
                 a = c;
                 fa = at_c.f;
-                if side == 1 {
-                    fb *= 0.5;
-                }
                 side = 1;
             } else {
+                if side == -1 {
+                    let k = 1.0 - at_c.f / fb;
+                    fa *= if k > 0.0 { k } else { 0.5 };
+                }
                 b = c;
                 fb = at_c.f;
                 best = at_c;
-                if side == -1 {
-                    fa *= 0.5;
-                }
                 side = -1;
             }
             if b - a <= 4.0 * f64::EPSILON * b {

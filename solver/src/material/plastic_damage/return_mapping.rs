@@ -92,6 +92,13 @@ impl LocalProblem<'_> {
     /// surface from the hardening state (y_t0, y_c0).
     pub fn solve(&self, trial: &[f64; 3], y_t0: f64, y_c0: f64) -> Returned {
         let f_tr = self.yield_value(trial, y_t0, y_c0);
+        if f_tr <= self.tol {
+            // Inside to within the tolerance (the caller's check may use other rounding).
+            return Returned {
+                converged: true,
+                ..self.evaluate(trial, y_t0, y_c0, 0.0)
+            };
+        }
         // Bracket: F(0) > 0; expand Δλ geometrically from an elastic-slope estimate until
         // F ≤ 0 (F → −∞ as Δλ → ∞ because the mean stress falls as K Δλ tan ψ).
         let (mut a, mut fa) = (0.0, f_tr);

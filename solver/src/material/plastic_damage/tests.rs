@@ -199,6 +199,22 @@ fn w10_tensile_dissipation_is_g_t_over_l() {
     let curve = tension_curve(&m, 1.0, 12.0, 1200);
     let w = trapezoid(&curve);
     assert!((w - 200.0).abs() < 0.02 * 200.0, "∫σ dεᵖ = {w}");
+    // Total dissipation to separation adds the elastic energy at peak released by the
+    // degradation (d_t = b_t keeps σ̄ = f_t0): g + f_t0²/(2E0) = 200 + 135.53 J/m³.
+    let m = w10();
+    let mut d = Driver::new(&m, 1.0);
+    let b = m.constants().tension.b(1.0);
+    let e_end = FT0 / E0 + 12.0 / b;
+    for k in 1..=1200 {
+        d.uniaxial(0, e_end * k as f64 / 1200.0);
+    }
+    let total = m.dissipated_energy_density(&d.state);
+    let expect = 200.0 + FT0 * FT0 / (2.0 * E0);
+    assert!(
+        (total - expect).abs() < 0.02 * expect,
+        "total {total} vs {expect}"
+    );
+    assert!((m.fracture_energy_density(&d.state) - 200.0).abs() < 0.02 * 200.0);
 }
 
 #[test]
@@ -218,7 +234,7 @@ fn w10_mesh_objectivity_of_the_dissipated_energy() {
         }
         let g = l * trapezoid(&curve);
         assert!((g - GT).abs() < 0.02 * GT, "l = {l}: {g} J/m²");
-        let tracked = l * m.dissipated_energy_density(&d.state);
+        let tracked = l * m.fracture_energy_density(&d.state);
         assert!(
             (tracked - GT).abs() < 0.02 * GT,
             "l = {l}: tracked {tracked}"
@@ -393,8 +409,8 @@ fn duvaut_lions_relaxes_halfway_when_dt_equals_viscosity() {
         char_length: 1.0,
         dt: 1e-3,
     };
-    let old = vec![0.0; 16];
-    let (mut a, mut b) = (vec![0.0; 16], vec![0.0; 16]);
+    let old = vec![0.0; 17];
+    let (mut a, mut b) = (vec![0.0; 17], vec![0.0; 17]);
     inviscid.update(&eps, &old, &mut a, &ctx);
     let s = viscous.update(&eps, &old, &mut b, &ctx);
     let (pa, pb) = (inviscid.plastic_strain(&a), viscous.plastic_strain(&b));
@@ -467,7 +483,7 @@ fn large_increments_stay_finite_and_admissible() {
         char_length: 0.5,
         dt: 1e-4,
     };
-    let mut st = vec![0.0; 16];
+    let mut st = vec![0.0; 17];
     let path = [
         [5e-3, -2e-3, 1e-3, 4e-3, -1e-3, 2e-3],
         [-2e-2, -1e-2, -3e-2, 0.0, 1e-2, 0.0],
@@ -475,7 +491,7 @@ fn large_increments_stay_finite_and_admissible() {
         [-1e-1, 0.0, 0.0, 0.0, 0.0, 0.0],
     ];
     for eps in path {
-        let mut new = vec![0.0; 16];
+        let mut new = vec![0.0; 17];
         let s = m.update(&eps, &st, &mut new, &ctx);
         assert!(s.iter().all(|v| v.is_finite()), "{s:?}");
         assert!(m.yield_function(&eps, &new) <= 1e-6 * FC0);

@@ -5,7 +5,7 @@
 //!
 //! 1. trial effective stress σ̄ᵗʳ = E₀ : (ε − εᵖₙ) (eq. 23);
 //! 2. check the yield function F of eq. (25) at the start-of-step hardening: F ≤ 0 is elastic;
-//! 3. otherwise the implicit return in principal space ([`return_mapping`]) with the
+//! 3. otherwise the implicit return in principal space (`return_mapping.rs`) with the
 //!    non-associated hyperbolic Drucker–Prager potential of eq. (26) gives Δλ, εᵖₙ₊₁ and the
 //!    hardening variables; a return that does not converge is redone in 4, 16, 64 sub-steps;
 //! 4. optional Duvaut–Lions regularisation relaxes the state towards the inviscid one;

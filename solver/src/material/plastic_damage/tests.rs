@@ -500,3 +500,47 @@ fn large_increments_stay_finite_and_admissible() {
         st = new;
     }
 }
+
+#[test]
+fn compression_unloading_slope_and_plastic_dilatancy() {
+    // After crushing past the peak: unloading slope (1 − D_c) E0 (1 %), and the lateral to
+    // axial plastic strain ratio of the potential (eq. 26) in uniaxial compression,
+    // −m_lat/m_ax with m = (3/2)s/√(h² + q²) + tanψ/3, s = σ(1/3, 1/3, −2/3), q = σ.
+    let m = w10();
+    let l = 0.1;
+    let law = m.constants().compression;
+    let b = law.b(l);
+    let mut d = Driver::new(&m, l);
+    let e_max = -(FC0 / E0 + 1.5 / b);
+    let n = 300;
+    let mut prev = (0.0, 0.0);
+    let mut ratio = 0.0;
+    let mut sig = 0.0;
+    for k in 1..=n {
+        let s = d.uniaxial(2, e_max * k as f64 / n as f64);
+        let p = m.plastic_strain(&d.state);
+        if k == n {
+            ratio = (p[0] - prev.0) / (p[2] - prev.1);
+            sig = -s[2] / (1.0 - m.damage(&d.state));
+        }
+        prev = (p[0], p[2]);
+    }
+    let c = m.constants();
+    let r = (c.hyper * c.hyper + sig * sig).sqrt();
+    let (m_lat, m_ax) = (0.5 * sig / r + c.tan_psi / 3.0, -sig / r + c.tan_psi / 3.0);
+    let expect = m_lat / m_ax;
+    assert!(
+        (ratio - expect).abs() < 0.01 * expect.abs(),
+        "{ratio} vs {expect}"
+    );
+    let dmg = m.damage(&d.state);
+    assert!((dmg - m.compressive_damage(&d.state)).abs() < 1e-9 && dmg > 0.5);
+    let s0 = d.uniaxial(2, e_max + 1e-6)[2];
+    let s1 = d.uniaxial(2, e_max + 2e-6)[2];
+    let slope = (s1 - s0) / 1e-6;
+    let expect = (1.0 - dmg) * E0;
+    assert!(
+        (slope - expect).abs() < 0.01 * expect,
+        "{slope} vs {expect}"
+    );
+}

@@ -159,6 +159,7 @@ impl PlasticDamage {
             b_t: self.constants.tension.b(l),
             b_c: self.constants.compression.b(l),
             tol: self.tol,
+            max_iter: return_mapping::MAX_ITER,
         }
     }
 

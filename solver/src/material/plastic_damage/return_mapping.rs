@@ -16,9 +16,10 @@ use super::hardening::SofteningLaw;
 use super::potential::Potential;
 use super::yield_surface::{tension_weight, YieldSurface};
 
-/// Iteration caps of the local solve.
+/// Cap on the bracket expansions of the local solve.
 const MAX_EXPAND: usize = 200;
-const MAX_ITER: usize = 200;
+/// Default cap on the regula-falsi iterations of the local solve.
+pub const MAX_ITER: usize = 200;
 
 /// Everything the local problem needs, for one characteristic length.
 #[derive(Clone, Copy, Debug)]
@@ -41,6 +42,8 @@ pub struct LocalProblem<'a> {
     pub b_c: f64,
     /// Convergence tolerance on F (Pa).
     pub tol: f64,
+    /// Cap on the regula-falsi iterations ([`MAX_ITER`]).
+    pub max_iter: usize,
 }
 
 /// Result of a return.
@@ -128,7 +131,7 @@ impl LocalProblem<'_> {
         let (mut b, mut fb) = (hi, at_hi.f);
         let mut best = at_hi;
         let mut side = 0i8;
-        for _ in 0..MAX_ITER {
+        for _ in 0..self.max_iter {
             let mut c = (a * fb - b * fa) / (fb - fa);
             if !(c > a && c < b) {
                 c = 0.5 * (a + b);

@@ -544,3 +544,34 @@ fn compression_unloading_slope_and_plastic_dilatancy() {
         "{slope} vs {expect}"
     );
 }
+
+#[test]
+fn sub_stepping_rescues_a_local_solve_that_does_not_converge() {
+    // With the regula-falsi capped at 2 iterations a large increment fails in one step; the
+    // fallback redoes it in 4, 16, 64 sub-steps. The result must be finite, admissible
+    // (F ≤ 0 is kept by construction) and close to the fully converged answer.
+    let m = w10();
+    let l = 0.5;
+    let start = Internal {
+        plastic: [0.0; 6],
+        y_t: 0.0,
+        y_c: 0.0,
+    };
+    let eps = [-1.5e-3, 3e-4, 2e-4, 4e-4, -1e-4, 2e-4];
+    let exact = m.integrate(&m.problem(l), &[0.0; 6], &eps, &start);
+    let mut capped = m.problem(l);
+    capped.max_iter = 2;
+    let (one, ok) = m.return_map(&capped, &eps, &start);
+    assert!(!ok, "the capped solve should fail in one step");
+    let rescued = m.integrate(&capped, &[0.0; 6], &eps, &start);
+    assert!(rescued.plastic.iter().all(|v| v.is_finite()));
+    let mut st = vec![0.0; m.state_len()];
+    st[slot::PLASTIC..slot::PLASTIC + 6].copy_from_slice(&rescued.plastic);
+    st[slot::Y_T] = rescued.y_t;
+    st[slot::Y_C] = rescued.y_c;
+    assert!(m.yield_function(&eps, &st) <= 1e-7 * FC0);
+    // Closer to the converged state than the failed single step, and within 5 %.
+    let gap = |a: &Internal| (a.y_c - exact.y_c).abs() / exact.y_c;
+    assert!(gap(&rescued) < 0.05, "rescued gap {}", gap(&rescued));
+    assert!(gap(&rescued) <= gap(&one) + 1e-12);
+}

@@ -5,7 +5,7 @@
 //!
 //! 1. trial effective stress σ̄ᵗʳ = E₀ : (ε − εᵖₙ) (eq. 23);
 //! 2. check the yield function F of eq. (25) at the start-of-step hardening: F ≤ 0 is elastic;
-//! 3. otherwise the implicit return in principal space ([`return_mapping`]) with the
+//! 3. otherwise the implicit return in principal space (`return_mapping.rs`) with the
 //!    non-associated hyperbolic Drucker–Prager potential of eq. (26) gives Δλ, εᵖₙ₊₁ and the
 //!    hardening variables; a return that does not converge is redone in 4, 16, 64 sub-steps;
 //! 4. optional Duvaut–Lions regularisation relaxes the state towards the inviscid one;
@@ -48,10 +48,12 @@ mod slot {
     pub const Y_C: usize = 13;
     /// D of eq. (24) at the end of the last update.
     pub const DAMAGE: usize = 14;
-    /// Dissipated energy density g_t κ_t + g_c κ_c (J/m³).
-    pub const DISSIPATED: usize = 15;
+    /// Fracture energy density g_t κ_t + g_c κ_c (J/m³), Lee & Fenves (1998).
+    pub const FRACTURE: usize = 15;
+    /// Total mechanical dissipation density ∫σ:dε − ψ (J/m³).
+    pub const DISSIPATED: usize = 16;
     /// Number of values.
-    pub const LEN: usize = 16;
+    pub const LEN: usize = 17;
 }
 
 /// Sub-step counts tried in turn when a return does not converge.
@@ -157,6 +159,7 @@ impl PlasticDamage {
             b_t: self.constants.tension.b(l),
             b_c: self.constants.compression.b(l),
             tol: self.tol,
+            max_iter: return_mapping::MAX_ITER,
         }
     }
 
@@ -280,15 +283,29 @@ impl PlasticDamage {
         new[slot::Y_T] = st.y_t;
         new[slot::Y_C] = st.y_c;
         new[slot::DAMAGE] = d;
-        let mut w = old[slot::DISSIPATED];
+        let mut w = old[slot::FRACTURE];
         if st.y_t != start.y_t {
             w += t.g(l) * (t.kappa(st.y_t) - t.kappa(start.y_t));
         }
         if st.y_c != start.y_c {
             w += c.g(l) * (c.kappa(st.y_c) - c.kappa(start.y_c));
         }
-        new[slot::DISSIPATED] = w;
-        scale(&eff, 1.0 - d)
+        new[slot::FRACTURE] = w;
+        let sig = scale(&eff, 1.0 - d);
+        // Total dissipation: trapezoidal work ½(σₙ + σₙ₊₁):Δε minus the change of the
+        // recoverable energy ψ = ½ σ:(ε − εᵖ). Zero (and skipped) when neither the internal
+        // variables nor D can have changed.
+        let unchanged = st.plastic == start.plastic && st.y_t == start.y_t && st.y_c == start.y_c;
+        new[slot::DISSIPATED] = if unchanged && t.damage(start.y_t) == 0.0 {
+            old[slot::DISSIPATED]
+        } else {
+            let sig0 = self.stress_from_state(&eps0, old);
+            let work = 0.5 * dot(&add(&sig0, &sig), &sub(strain, &eps0));
+            let psi0 = 0.5 * dot(&sig0, &sub(&eps0, &start.plastic));
+            let psi1 = 0.5 * dot(&sig, &sub(strain, &st.plastic));
+            old[slot::DISSIPATED] + work - (psi1 - psi0)
+        };
+        sig
     }
 
     /// D = 1 − (1 − D_c)(1 − s D_t), s = s₀ + (1 − s₀) r(σ̄) (eq. 24).
@@ -377,17 +394,25 @@ impl PlasticDamage {
         voigt(&s[slot::PLASTIC..])
     }
 
-    /// Energy dissipated by cracking and crushing per unit volume, g_t κ_t + g_c κ_c (J/m³),
-    /// i.e. ∫ f_t dε̃ᵖ_t + ∫ f_c dε̃ᵖ_c (Lee & Fenves 1998).
+    /// Total energy dissipated per unit volume (J/m³) by plastic flow and stiffness
+    /// degradation: Σ ½(σₙ + σₙ₊₁):Δε − ψ, ψ = ½ σ:(ε − εᵖ), accumulated over the updates
+    /// (the term W_damage/plastic of the energy balance, W12).
     pub fn dissipated_energy_density(&self, s: &[f64]) -> f64 {
         s[slot::DISSIPATED]
     }
 
-    /// Recoverable (elastic) energy density ½ σ : (ε − εᵖ) (J/m³).
+    /// Fracture energy density of Lee & Fenves (1998), g_t κ_t + g_c κ_c = ∫f_t dε̃ᵖ_t +
+    /// ∫f_c dε̃ᵖ_c (J/m³): what G/l_ch regularises. It measures the equivalent plastic strains
+    /// against the uniaxial laws, so it differs from [`Self::dissipated_energy_density`]:
+    /// uniaxially it omits the elastic energy released by degradation.
+    pub fn fracture_energy_density(&self, s: &[f64]) -> f64 {
+        s[slot::FRACTURE]
+    }
+
+    /// Recoverable (elastic) energy density ψ = ½ σ : (ε − εᵖ) (J/m³).
     pub fn recoverable_energy_density(&self, strain: &Voigt, state: &[f64]) -> f64 {
         let sig = self.stress_from_state(strain, state);
-        let e = sub(strain, &voigt(&state[slot::PLASTIC..]));
-        0.5 * sig.iter().zip(e.iter()).map(|(a, b)| a * b).sum::<f64>()
+        0.5 * dot(&sig, &sub(strain, &voigt(&state[slot::PLASTIC..])))
     }
 }
 
@@ -406,6 +431,23 @@ fn sub(a: &Voigt, b: &Voigt) -> Voigt {
         a[4] - b[4],
         a[5] - b[5],
     ]
+}
+
+#[inline]
+fn add(a: &Voigt, b: &Voigt) -> Voigt {
+    [
+        a[0] + b[0],
+        a[1] + b[1],
+        a[2] + b[2],
+        a[3] + b[3],
+        a[4] + b[4],
+        a[5] + b[5],
+    ]
+}
+
+#[inline]
+fn dot(a: &Voigt, b: &Voigt) -> f64 {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3] + a[4] * b[4] + a[5] * b[5]
 }
 
 #[inline]

@@ -378,4 +378,25 @@ mod tests {
         );
         assert!(toml::from_str::<PlasticDamageParams>("ft0 = 1e6\nfc = 1e7\nbogus = 1\n").is_err());
     }
+
+    #[test]
+    fn parses_the_full_abaqus_vocabulary() {
+        let p: PlasticDamageParams = toml::from_str(
+            "ft0 = 2.9e6\nfc0 = 13e6\nfc = 24.1e6\ngt = 200.0\ngc = 1e4\nat = 0.2\n\
+             dilation_angle_deg = 36.0\neccentricity = 0.1\nfb0_fc0 = 1.16\nkc = 0.667\n\
+             viscosity = 1e-4\ns0 = 0.2\ndt_half = 0.4\ndc_peak = 0.3\n",
+        )
+        .unwrap();
+        let c = validate("c", &p).unwrap();
+        assert_eq!(c.viscosity, 1e-4);
+        assert_eq!(c.s0, 0.2);
+        assert!((c.tan_psi - 36f64.to_radians().tan()).abs() < 1e-15);
+        // d/b from the degradation at the reference points.
+        let yh = c.tension.y_half();
+        assert!((c.tension.damage(yh) - 0.4).abs() < 1e-12);
+        assert!((c.tension.stress(yh) - 0.5 * 2.9e6).abs() < 1e-6);
+        let yp = c.compression.y_peak();
+        assert!((c.compression.damage(yp) - 0.3).abs() < 1e-12);
+        assert!((c.compression.stress(yp) - 24.1e6).abs() < 1e-3);
+    }
 }

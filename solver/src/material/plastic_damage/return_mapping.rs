@@ -9,16 +9,17 @@
 //!
 //! (the brackets keep the variables monotone when the dilatant potential makes every
 //! principal plastic strain rate positive). The local system is thereby condensed to one
-//! scalar equation F(Δλ) = 0 of eq. (25), solved by a bracketing Illinois (regula falsi)
-//! iteration: bounded, derivative free, and always left on the admissible side F ≤ 0.
+//! scalar equation F(Δλ) = 0 of eq. (25), solved by a bracketing Anderson–Björck
+//! (regula falsi) iteration: bounded, derivative free, and always left on the admissible side F ≤ 0.
 
 use super::hardening::SofteningLaw;
 use super::potential::Potential;
 use super::yield_surface::{tension_weight, YieldSurface};
 
-/// Iteration caps of the local solve.
+/// Cap on the bracket expansions of the local solve.
 const MAX_EXPAND: usize = 200;
-const MAX_ITER: usize = 200;
+/// Default cap on the regula-falsi iterations of the local solve.
+pub const MAX_ITER: usize = 200;
 
 /// Everything the local problem needs, for one characteristic length.
 #[derive(Clone, Copy, Debug)]
@@ -41,6 +42,8 @@ pub struct LocalProblem<'a> {
     pub b_c: f64,
     /// Convergence tolerance on F (Pa).
     pub tol: f64,
+    /// Cap on the regula-falsi iterations ([`MAX_ITER`]).
+    pub max_iter: usize,
 }
 
 /// Result of a return.
@@ -92,6 +95,13 @@ impl LocalProblem<'_> {
     /// surface from the hardening state (y_t0, y_c0).
     pub fn solve(&self, trial: &[f64; 3], y_t0: f64, y_c0: f64) -> Returned {
         let f_tr = self.yield_value(trial, y_t0, y_c0);
+        if f_tr <= self.tol {
+            // Inside to within the tolerance (the caller's check may use other rounding).
+            return Returned {
+                converged: true,
+                ..self.evaluate(trial, y_t0, y_c0, 0.0)
+            };
+        }
         // Bracket: F(0) > 0; expand Δλ geometrically from an elastic-slope estimate until
         // F ≤ 0 (F → −∞ as Δλ → ∞ because the mean stress falls as K Δλ tan ψ).
         let (mut a, mut fa) = (0.0, f_tr);
@@ -117,11 +127,11 @@ impl LocalProblem<'_> {
             at_hi.converged = true;
             return at_hi;
         }
-        // Illinois iteration on [a, b] with F(a) > 0 ≥ F(b).
+        // Regula falsi (Anderson–Björck) on [a, b] with F(a) > 0 ≥ F(b).
         let (mut b, mut fb) = (hi, at_hi.f);
         let mut best = at_hi;
         let mut side = 0i8;
-        for _ in 0..MAX_ITER {
+        for _ in 0..self.max_iter {
             let mut c = (a * fb - b * fa) / (fb - fa);
             if !(c > a && c < b) {
                 c = 0.5 * (a + b);
@@ -136,20 +146,24 @@ impl LocalProblem<'_> {
                     ..at_c
                 };
             }
+            // Anderson–Björck: when the same end is kept twice, scale its value by
+            // 1 − F(c)/F(replaced end) (0.5 when that is not positive).
             if at_c.f > 0.0 {
+                if side == 1 {
+                    let k = 1.0 - at_c.f / fa;
+                    fb *= if k > 0.0 { k } else { 0.5 };
+                }
                 a = c;
                 fa = at_c.f;
-                if side == 1 {
-                    fb *= 0.5;
-                }
                 side = 1;
             } else {
+                if side == -1 {
+                    let k = 1.0 - at_c.f / fb;
+                    fa *= if k > 0.0 { k } else { 0.5 };
+                }
                 b = c;
                 fb = at_c.f;
                 best = at_c;
-                if side == -1 {
-                    fa *= 0.5;
-                }
                 side = -1;
             }
             if b - a <= 4.0 * f64::EPSILON * b {

@@ -32,6 +32,11 @@ fn energy_conservation() {
 }
 
 #[test]
+fn w10_plastic_damage() {
+    run_case("W10");
+}
+
+#[test]
 fn w13_stable_step() {
     run_case("W13");
 }
@@ -39,7 +44,7 @@ fn w13_stable_step() {
 #[test]
 fn every_case_is_tested_here() {
     let ids: Vec<&str> = cases::all().iter().map(|c| c.id).collect();
-    let covered = ["W1", "patch", "energy", "W13", "W1-conv"];
+    let covered = ["W1", "patch", "energy", "W10", "W13", "W1-conv"];
     for id in ids {
         assert!(
             covered.contains(&id),

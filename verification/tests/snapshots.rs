@@ -3,7 +3,9 @@
 //! checks against its reference; the snapshot guards it against unnoticed drift.
 
 use dcfm::element::Integration;
-use dcfm_verification::cases::{energy_conservation, patch_test, w01_wave_pulses};
+use dcfm_verification::cases::{
+    energy_conservation, patch_test, w01_wave_pulses, w10_plastic_damage,
+};
 use dcfm_verification::models::column::{ColumnSetup, TopEnd, Wave};
 
 fn r4(x: f64) -> String {
@@ -50,4 +52,17 @@ fn energy_means() {
 fn patch_errors_are_round_off() {
     let (s, f) = patch_test::measure(Integration::Full).unwrap();
     insta::assert_yaml_snapshot!("patch_full_below_1e-12", vec![s < 1e-12, f < 1e-12]);
+}
+
+#[test]
+fn w10_tension_scalars() {
+    let (s, d, g) = w10_plastic_damage::tension(1.0).unwrap();
+    insta::assert_yaml_snapshot!(
+        "w10_tension_l1",
+        vec![
+            ("stress_at_1_over_b_pa", r4(s)),
+            ("damage_at_1_over_b", r4(d)),
+            ("plastic_dissipation_j_m3", r4(g))
+        ]
+    );
 }

@@ -9,6 +9,7 @@ pub mod convergence_w01;
 pub mod energy_conservation;
 pub mod patch_test;
 pub mod w01_wave_pulses;
+pub mod w10_plastic_damage;
 pub mod w13_stable_step;
 
 /// A registered case: name and the function that runs it.
@@ -35,6 +36,10 @@ pub fn all() -> Vec<Case> {
         Case {
             id: "energy",
             run: energy_conservation::run,
+        },
+        Case {
+            id: "W10",
+            run: w10_plastic_damage::run,
         },
         Case {
             id: "W13",

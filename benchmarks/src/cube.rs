@@ -3,7 +3,8 @@
 //! up from the base and every element strains after a few steps.
 
 use dcfm::element::Integration;
-use dcfm::material::{Elastic, Material};
+use dcfm::material::plastic_damage::PlasticDamageParams;
+use dcfm::material::{Elastic, Material, PlasticDamage};
 use dcfm::mesh::BoxMeshSpec;
 use dcfm::model::{Model, RegionSetup};
 use dcfm::stage::Simulation;
@@ -13,6 +14,30 @@ pub const REGION: &str = "rock";
 
 /// Safety factor on the critical step: dt = `SAFETY` × critical.
 pub const SAFETY: f64 = 0.9;
+
+/// Constitutive model of the cube.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CubeMaterial {
+    /// Linear elastic rock.
+    Elastic,
+    /// Lee–Fenves plastic-damage with the W10 concrete strengths (f_t0 2.9 MPa, f_c0 13,
+    /// f_c 24.1 MPa) on the same elastic constants; the motion stays below first yield.
+    PlasticDamageElastic,
+    /// The same model with a 50× stronger initial velocity: the base layers yield and
+    /// damage, so most updates take the plastic return.
+    PlasticDamageDamaging,
+}
+
+impl CubeMaterial {
+    /// Suffix of the case name.
+    pub fn suffix(self) -> &'static str {
+        match self {
+            CubeMaterial::Elastic => "",
+            CubeMaterial::PlasticDamageElastic => "_pd_elastic",
+            CubeMaterial::PlasticDamageDamaging => "_pd_damaging",
+        }
+    }
+}
 
 /// A cube to benchmark.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -27,6 +52,8 @@ pub struct CubeSpec {
     pub hourglass: f64,
     /// Initial velocity of every node not on the base (m/s).
     pub velocity: [f64; 3],
+    /// Constitutive model.
+    pub material: CubeMaterial,
 }
 
 impl CubeSpec {
@@ -38,7 +65,18 @@ impl CubeSpec {
             edge: 10.0,
             hourglass: 0.05,
             velocity: [0.1, 0.05, -0.02],
+            material: CubeMaterial::Elastic,
         }
+    }
+
+    /// The same cube with another constitutive model (the damaging regime also raises the
+    /// initial velocity 50×).
+    pub fn with_material(mut self, material: CubeMaterial) -> Self {
+        self.material = material;
+        if material == CubeMaterial::PlasticDamageDamaging {
+            self.velocity = self.velocity.map(|v| 50.0 * v);
+        }
+        self
     }
 
     /// Number of elements.
@@ -48,7 +86,12 @@ impl CubeSpec {
 
     /// Case name used in records and filters, e.g. `cube40_one_point`.
     pub fn name(&self) -> String {
-        format!("cube{}_{}", self.divisions, self.integration.name())
+        format!(
+            "cube{}_{}{}",
+            self.divisions,
+            self.integration.name(),
+            self.material.suffix()
+        )
     }
 
     /// Build the model: rock (E 20 GPa, ν 0.25, ρ 2700 kg/m³), base face `rock.zmin`
@@ -57,7 +100,15 @@ impl CubeSpec {
         let n = self.divisions;
         let mesh = BoxMeshSpec::single(REGION, [0.0; 3], [self.edge; 3], [n, n, n])
             .build("benchmark cube")?;
-        let material = Material::Elastic(Elastic::new(REGION, 20e9, 0.25, 2700.0)?);
+        let elastic = Elastic::new(REGION, 20e9, 0.25, 2700.0)?;
+        let material = match self.material {
+            CubeMaterial::Elastic => Material::Elastic(elastic),
+            _ => Material::PlasticDamage(Box::new(PlasticDamage::new(
+                REGION,
+                elastic,
+                &PlasticDamageParams::from_strengths(2.9e6, 13e6, 24.1e6, 200.0, 1e4),
+            )?)),
+        };
         let setup = RegionSetup {
             region: REGION.to_string(),
             material,

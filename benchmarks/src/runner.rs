@@ -8,7 +8,7 @@ use std::time::{Duration, Instant};
 use dcfm::element::Integration;
 use dcfm::stage::Simulation;
 
-use crate::cube::CubeSpec;
+use crate::cube::{CubeMaterial, CubeSpec};
 use crate::error::BenchError;
 use crate::record::ThroughputRecord;
 use crate::{cputime, git, history, timestamp};
@@ -18,8 +18,10 @@ use crate::{cputime, git, history, timestamp};
 pub struct RunConfig {
     /// Cube divisions n (n³ elements), one case per size and integration rule.
     pub sizes: Vec<usize>,
-    /// Integration rules.
+    /// Integration rules (elastic cubes).
     pub integrations: Vec<Integration>,
+    /// Plastic-damage regimes, run with full integration at every size (issue #4).
+    pub plastic_damage: Vec<CubeMaterial>,
     /// Thread counts; each case is timed on each, in this order, on the same simulation.
     pub threads: Vec<usize>,
     /// Warm-up steps before each timing; `None`: n + 5, enough for the waves from the base
@@ -46,6 +48,10 @@ impl RunConfig {
         Self {
             sizes: vec![20, 40],
             integrations: vec![Integration::OnePoint, Integration::Full],
+            plastic_damage: vec![
+                CubeMaterial::PlasticDamageElastic,
+                CubeMaterial::PlasticDamageDamaging,
+            ],
             threads: vec![1, 2],
             warmup_steps: None,
             min_wall_s: 2.0,
@@ -73,8 +79,12 @@ impl RunConfig {
     pub fn cases(&self) -> Vec<CubeSpec> {
         let mut out = Vec::new();
         for &n in &self.sizes {
-            for &integration in &self.integrations {
-                let spec = CubeSpec::new(n, integration);
+            let elastic = self.integrations.iter().map(|&i| CubeSpec::new(n, i));
+            let damage = self
+                .plastic_damage
+                .iter()
+                .map(|&m| CubeSpec::new(n, Integration::Full).with_material(m));
+            for spec in elastic.chain(damage) {
                 if self
                     .filter
                     .as_deref()

@@ -24,7 +24,35 @@ fn tiny(history: Option<PathBuf>) -> RunConfig {
         min_steps: 4,
         max_steps: 8,
         history,
+        plastic_damage: Vec::new(),
         ..RunConfig::quick()
+    }
+}
+
+#[test]
+fn plastic_damage_cubes_run_in_both_regimes() {
+    use dcfm_benchmarks::cube::CubeMaterial;
+    let config = RunConfig {
+        integrations: Vec::new(),
+        plastic_damage: vec![
+            CubeMaterial::PlasticDamageElastic,
+            CubeMaterial::PlasticDamageDamaging,
+        ],
+        threads: vec![1],
+        ..tiny(None)
+    };
+    let records = run(&config, |_| {}).expect("plastic-damage run");
+    let names: Vec<&str> = records.iter().map(|r| r.case.as_str()).collect();
+    assert_eq!(names, ["cube3_full_pd_elastic", "cube3_full_pd_damaging"]);
+    for r in &records {
+        assert_eq!(r.integration, "full");
+        // 8 points × (17 state values) × (old + new) × 8 bytes on top of the geometry.
+        assert!(
+            r.bytes_per_element > 8.0 * 17.0 * 2.0 * 8.0,
+            "{}",
+            r.bytes_per_element
+        );
+        assert!(r.element_updates_per_s > 0.0);
     }
 }
 

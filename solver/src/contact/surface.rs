@@ -350,6 +350,22 @@ fn polish(s: &mut Scratch, dt: f64, mu_s: f64, mu_d: f64) -> std::result::Result
     ))
 }
 
+/// H restricted to the active set is singular (more constraints than free masses: e.g.
+/// fully constrained nodes of a pressing on one free face node). The direct solve is left
+/// to the Gauss–Seidel polish, which handles a semi-definite H: start from R = 0.
+fn singular_fallback(s: &mut Scratch, iter: usize) -> usize {
+    for a in s.active.iter_mut() {
+        a.r = [0.0; 3];
+        a.released = false;
+        a.mode = if a.gbar < 0.0 && !a.fixed {
+            Mode::Stick
+        } else {
+            Mode::Open
+        };
+    }
+    iter
+}
+
 fn active_set(
     s: &mut Scratch,
     dt: f64,
@@ -422,10 +438,13 @@ fn active_set(
         }
         let mat = SparseColMat::<usize, f64>::try_new_from_triplets(size, size, &s.triplets)
             .map_err(|e| format!("cannot assemble the contact matrix: {e:?}"))?;
-        let lu = mat
-            .sp_lu()
-            .map_err(|e| format!("singular contact matrix ({size} unknowns): {e:?}"))?;
+        let Ok(lu) = mat.sp_lu() else {
+            return Ok(singular_fallback(s, iter));
+        };
         lu.solve_in_place(rhs.as_mut());
+        if (0..size).any(|i| !rhs[(i, 0)].is_finite()) {
+            return Ok(singular_fallback(s, iter));
+        }
         let mut changed = false;
         for a in s.active.iter_mut() {
             a.r = match a.mode {
@@ -433,9 +452,6 @@ fn active_set(
                 Mode::Slide => scale(rhs[(a.offset, 0)], a.dir),
                 Mode::Open => [0.0; 3],
             };
-            if a.r.iter().any(|v| !v.is_finite()) {
-                return Err("non-finite contact force (singular system)".into());
-            }
         }
         for a in s.active.iter_mut() {
             if a.mode == Mode::Open {
@@ -452,7 +468,8 @@ fn active_set(
             if a.mode == Mode::Stick {
                 let t = tangential(a.r, a.n);
                 let tm = norm(t);
-                if tm > mu_s * lambda * (1.0 + 1e-12) {
+                let mu = if a.slid { mu_d } else { mu_s };
+                if tm > mu * lambda * (1.0 + 1e-12) {
                     a.mode = Mode::Slide;
                     a.slid = true;
                     a.dir = axpy(scale(-1.0, a.n), mu_d / tm, t);
@@ -580,8 +597,9 @@ pub(super) fn solve(
         let dbar = sub(cbar, pred(sl.node));
         sl.face = fi;
         sl.xi = [xi, eta];
-        s.active
-            .push(new_active(si, sl.node, face, phi, n, dbar, dn));
+        let mut a = new_active(si, sl.node, face, phi, n, dbar, dn);
+        a.slid = sl.slid;
+        s.active.push(a);
     }
     if s.active.iter().all(|a| a.mode == Mode::Open) {
         for a in &s.active {
@@ -642,6 +660,8 @@ pub(super) fn solve(
         sl.slip = add(sl.slip, dslip);
         let lambda = -dot(a.r, a.n);
         sl.normal_force = if a.mode == Mode::Open { 0.0 } else { lambda };
+        sl.force = a.r;
+        sl.slid |= a.slid;
         sl.tangential = tangential(a.r, a.n);
         sl.state = match a.mode {
             Mode::Stick => PairState::Stick,

@@ -20,9 +20,11 @@
 //!    with a sparse LU (faer), sliding and separation switches until consistent;
 //! 3. the work of the contact forces over the step, accumulated as dissipation.
 //!
-//! Forces of earlier pairs and interfaces are included in the predictor of later ones
-//! (Gauss–Seidel order: interfaces in input order, pairs before surfaces), so a node
-//! shared by two interfaces is treated consistently and deterministically.
+//! Forces of earlier interfaces are included in the predictor of later ones (interfaces in
+//! input order). Within an interface that has both pairs and point-to-surface nodes, steps
+//! 1 and 2 are repeated (block Gauss–Seidel) until their forces agree to 1e-12, so that
+//! every pair and node ends consistent with the others. No threads: results are
+//! deterministic.
 //! See `docs/contact.md` for the equations, the sign conventions and the choices made
 //! where the paper is terse.
 

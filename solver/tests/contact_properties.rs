@@ -233,12 +233,19 @@ fn run_random_steps(
             u[k] = axpy(up[k], dt * dt * w[k], r[k]);
             v[k] = axpy(vp[k], dt * w[k], r[k]);
         }
-        // No penetration after the correction for paired nodes.
+        // No penetration after the correction: pairs; point-to-surface nodes never end
+        // deeper than a penetration they had at tⁿ (held, not pushed out: docs/contact.md).
         for (a, b, _, nrm) in sys.pairs(0) {
             if b != u32::MAX {
                 let g = dot(sub(u[b as usize], u[a as usize]), nrm);
                 prop_assert!(g >= -1e-12, "pair gap {g}");
             }
+        }
+        for (a, g0, g) in sys.surface_gaps(0) {
+            prop_assert!(
+                g >= g0.min(0.0) - 1e-12,
+                "point-to-surface gap {g} (start {g0}) at node {a}"
+            );
         }
     }
     Ok(())
@@ -438,7 +445,11 @@ proptest! {
                     prop_assert!((t - g.mu_d * lambda).abs() <= eps);
                     prop_assert!(dot(d, n).abs() <= 1e-9 * scale_d);
                 }
-                PairState::Separated => prop_assert_eq!(*r, [0.0; 3]),
+                PairState::Separated => {
+                    prop_assert_eq!(*r, [0.0; 3]);
+                    // No penetration after the correction (gap at tⁿ ≥ 0 here).
+                    prop_assert!(dot(d, n) >= -1e-9 * scale_d, "open node at gap {}", dot(d, n));
+                }
                 PairState::Bonded => prop_assert!(false, "bonded in point-to-surface"),
             }
             // Face-node forces: sum −R, statically equivalent to −R at the contact point.

@@ -183,6 +183,9 @@ pub(crate) struct SlaveNode {
     pub force: [f64; 3],
     /// Slid in the current step (keeps μd for the rest of the step).
     pub slid: bool,
+    /// Point-to-surface: normal gap at tⁿ to this step's contact point (negative: a
+    /// penetration that the step holds).
+    pub gap_start: f64,
     /// Lost its cohesion in the current step.
     pub broke: bool,
 }
@@ -586,6 +589,22 @@ impl ContactSystem {
             }
         }
         (p, s)
+    }
+
+    /// Nodes of interface `k` in point-to-surface contact with a face this step:
+    /// (node, normal gap at tⁿ, normal gap after the correction), both to this step's
+    /// contact point. For tests and diagnostics.
+    pub fn surface_gaps(&self, k: usize) -> Vec<(u32, f64, f64)> {
+        self.interfaces
+            .get(k)
+            .map(|i| {
+                i.slaves
+                    .iter()
+                    .filter(|s| s.surface && s.face != NONE)
+                    .map(|s| (s.node, s.gap_start, s.gap))
+                    .collect()
+            })
+            .unwrap_or_default()
     }
 
     /// The pairs of interface `k`: (node of a, node of b or u32::MAX, control area,

@@ -303,6 +303,7 @@ pub(super) fn build_interface(
             force: [0.0; 3],
             slid: false,
             broke: false,
+            gap_start: 0.0,
         });
     }
     match spec.mode {

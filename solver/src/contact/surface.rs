@@ -312,7 +312,7 @@ fn polish(s: &mut Scratch, dt: f64, mu_s: f64, mu_d: f64) -> std::result::Result
                 }
             }
             let a = &s.active[i];
-            if a.released || (a.mode == Mode::Open && a.gbar - dot(coupled, a.n) >= 0.0) {
+            if a.mode == Mode::Open && a.gbar - dot(coupled, a.n) >= 0.0 {
                 continue;
             }
             // Local problem: relative position after the step d = d̃ − Hᵢᵢ Rᵢ.
@@ -650,6 +650,7 @@ pub(super) fn solve(
         let dbar = sub(cbar, pred(sl.node));
         sl.face = fi;
         sl.xi = [xi, eta];
+        sl.gap_start = dot(dn, n);
         let mut a = new_active(si, sl.node, face, phi, n, dbar, dn);
         a.slid = sl.slid;
         s.active.push(a);

@@ -20,9 +20,11 @@
 //!    with a sparse LU (faer), sliding and separation switches until consistent;
 //! 3. the work of the contact forces over the step, accumulated as dissipation.
 //!
-//! Forces of earlier pairs and interfaces are included in the predictor of later ones
-//! (Gauss–Seidel order: interfaces in input order, pairs before surfaces), so a node
-//! shared by two interfaces is treated consistently and deterministically.
+//! Forces of earlier interfaces are included in the predictor of later ones (interfaces in
+//! input order). Within an interface that has both pairs and point-to-surface nodes, steps
+//! 1 and 2 are repeated (block Gauss–Seidel) until their forces agree to 1e-12, so that
+//! every pair and node ends consistent with the others. No threads: results are
+//! deterministic.
 //! See `docs/contact.md` for the equations, the sign conventions and the choices made
 //! where the paper is terse.
 
@@ -176,6 +178,16 @@ pub(crate) struct SlaveNode {
     /// Face of surface b (index into `Interface::b_faces`) in point-to-surface contact.
     pub face: u32,
     pub xi: [f64; 2],
+    /// Force applied to this node in the current step (R; −R on the partner, −φⱼR on the
+    /// face nodes), so that a sweep can be taken back.
+    pub force: [f64; 3],
+    /// Slid in the current step (keeps μd for the rest of the step).
+    pub slid: bool,
+    /// Point-to-surface: normal gap at tⁿ to this step's contact point (negative: a
+    /// penetration that the step holds).
+    pub gap_start: f64,
+    /// Lost its cohesion in the current step.
+    pub broke: bool,
 }
 
 /// Parameters and geometry of one interface.
@@ -191,6 +203,10 @@ pub(crate) struct Interface {
     pub b_faces: Vec<[u32; 4]>,
     /// Largest diagonal of the faces of surface b (reference configuration).
     pub b_face_size: f64,
+    /// Records at the start of the step and forces of the previous sweep (interfaces with
+    /// both pairs and point-to-surface nodes).
+    pub snapshot: Vec<SlaveNode>,
+    pub prev_force: Vec<[f64; 3]>,
 }
 
 /// All contact interfaces of a model and their states.
@@ -307,18 +323,9 @@ impl ContactSystem {
         let mut interfaces = std::mem::take(&mut self.interfaces);
         let mut result = Ok(());
         for iface in interfaces.iter_mut() {
-            self.point_to_point(iface, inp, r);
-            if iface.slaves.iter().any(|s| s.surface) {
-                let mut scratch = std::mem::take(&mut self.scratch);
-                let res = surface::solve(iface, inp, r, &mut scratch);
-                for &node in &scratch.touched {
-                    self.touch(node);
-                }
-                self.scratch = scratch;
-                if let Err(e) = res {
-                    result = Err(e);
-                    break;
-                }
+            result = self.interface_step(iface, inp, r);
+            if result.is_err() {
+                break;
             }
         }
         self.interfaces = interfaces;
@@ -336,6 +343,84 @@ impl ContactSystem {
         }
         self.friction_work -= work;
         Ok(())
+    }
+
+    /// Point-to-surface solve of one interface (its touched nodes marked).
+    fn surface_step(
+        &mut self,
+        iface: &mut Interface,
+        inp: &ContactStepInput,
+        r: &mut [[f64; 3]],
+    ) -> Result<()> {
+        let mut scratch = std::mem::take(&mut self.scratch);
+        let res = surface::solve(iface, inp, r, &mut scratch);
+        for &node in &scratch.touched {
+            self.touch(node);
+        }
+        self.scratch = scratch;
+        res
+    }
+
+    /// One interface for one step. Pairs first, then point-to-surface nodes. Where the
+    /// interface has both, the two are repeated (block Gauss–Seidel, each sweep from the
+    /// records at the start of the step, the previous sweep's forces taken back) until no
+    /// force changes by more than 1e-12 of the largest, so that every pair and every node
+    /// ends consistent with the forces of the others.
+    fn interface_step(
+        &mut self,
+        iface: &mut Interface,
+        inp: &ContactStepInput,
+        r: &mut [[f64; 3]],
+    ) -> Result<()> {
+        const MAX_SWEEPS: usize = 500;
+        for s in iface.slaves.iter_mut() {
+            s.force = [0.0; 3];
+            s.slid = false;
+            s.broke = false;
+        }
+        let any_surface = iface.slaves.iter().any(|s| s.surface);
+        let any_pair = iface.slaves.iter().any(|s| !s.surface && s.partner != NONE);
+        if !(any_surface && any_pair) {
+            self.point_to_point(iface, inp, r);
+            if any_surface {
+                self.surface_step(iface, inp, r)?;
+            }
+            apply_switches(iface);
+            return Ok(());
+        }
+        iface.snapshot.clone_from(&iface.slaves);
+        iface.prev_force.clear();
+        iface.prev_force.resize(iface.slaves.len(), [0.0; 3]);
+        for sweep in 0..MAX_SWEEPS {
+            // Each part is solved again with the other part's latest forces in `r`.
+            if sweep > 0 {
+                restart(iface, r, false);
+            }
+            self.point_to_point(iface, inp, r);
+            if sweep > 0 {
+                restart(iface, r, true);
+            }
+            self.surface_step(iface, inp, r)?;
+            let mut change: f64 = 0.0;
+            let mut fmax: f64 = 0.0;
+            for (s, prev) in iface.slaves.iter().zip(iface.prev_force.iter_mut()) {
+                change = change.max(norm(sub(s.force, *prev)));
+                fmax = fmax.max(norm(s.force));
+                *prev = s.force;
+            }
+            if sweep > 0 && change <= 1e-12 * fmax.max(f64::MIN_POSITIVE) {
+                apply_switches(iface);
+                return Ok(());
+            }
+        }
+        Err(DcfmError::Contact {
+            interface: iface.name.clone(),
+            message: format!(
+                "step {} (t = {:.6e} s): pairs and point-to-surface nodes did not settle \
+                 in {MAX_SWEEPS} sweeps",
+                inp.step, inp.time
+            ),
+        })
     }
 
     /// Step 1 of [`compute`](Self::compute): every pair in point-to-point contact.
@@ -371,7 +456,15 @@ impl ContactSystem {
             let params = PairParams {
                 shear_capacity: iface.cohesion * s.area,
                 tensile_capacity: iface.tensile * s.area,
+                // A pair that slid in an earlier sweep of this step keeps μd.
+                mu_s: if s.slid { iface.mu_d } else { iface.mu_s },
                 ..base
+            };
+            // A pair that lost its bond in an earlier sweep of this step stays unbonded.
+            let state = if s.broke && s.state == PairState::Bonded {
+                PairState::Stick
+            } else {
+                s.state
             };
             let pin = PairInput {
                 n: s.normal,
@@ -380,9 +473,12 @@ impl ContactSystem {
                 rel_pred,
                 rel_old,
             };
-            let out = solve_pair(s.state, &params, &pin);
+            let out = solve_pair(state, &params, &pin);
             r[a] = geom::add(r[a], out.r);
             r[b] = sub(r[b], out.r);
+            s.force = out.r;
+            s.slid |= out.state == PairState::Sliding;
+            s.broke |= state == PairState::Bonded && out.state != PairState::Bonded;
             let m = &mut self.mark;
             for k in [s.node, s.partner] {
                 if m[k as usize] != self.stamp {
@@ -400,11 +496,6 @@ impl ContactSystem {
             }
             s.normal_force = out.normal;
             s.tangential = out.tangential;
-            if s.state != PairState::Bonded && norm(s.slip) > s.slip_threshold {
-                // Large slip: from the next step on this node contacts the faces of b.
-                s.surface = true;
-                s.partner = NONE;
-            }
         }
     }
 
@@ -500,6 +591,22 @@ impl ContactSystem {
         (p, s)
     }
 
+    /// Nodes of interface `k` in point-to-surface contact with a face this step:
+    /// (node, normal gap at tⁿ, normal gap after the correction), both to this step's
+    /// contact point. For tests and diagnostics.
+    pub fn surface_gaps(&self, k: usize) -> Vec<(u32, f64, f64)> {
+        self.interfaces
+            .get(k)
+            .map(|i| {
+                i.slaves
+                    .iter()
+                    .filter(|s| s.surface && s.face != NONE)
+                    .map(|s| (s.node, s.gap_start, s.gap))
+                    .collect()
+            })
+            .unwrap_or_default()
+    }
+
     /// The pairs of interface `k`: (node of a, node of b or u32::MAX, control area,
     /// unit normal). For tests and diagnostics.
     pub fn pairs(&self, k: usize) -> Vec<(u32, u32, f64, [f64; 3])> {
@@ -512,6 +619,52 @@ impl ContactSystem {
                     .collect()
             })
             .unwrap_or_default()
+    }
+}
+
+/// Large slip: a pair whose net slip exceeds its threshold contacts the faces of b from
+/// the next step on (point-to-surface).
+fn apply_switches(iface: &mut Interface) {
+    for s in iface.slaves.iter_mut() {
+        if !s.surface
+            && s.partner != NONE
+            && s.state != PairState::Bonded
+            && norm(s.slip) > s.slip_threshold
+        {
+            s.surface = true;
+            s.partner = NONE;
+        }
+    }
+}
+
+/// Take back the forces that the pairs (`surface = false`) or the point-to-surface nodes
+/// (`surface = true`) of the interface applied in the current sweep, and restore their
+/// records to the start of the step (keeping what the step has learnt: slid, broke).
+fn restart(iface: &mut Interface, r: &mut [[f64; 3]], surface: bool) {
+    for (s, snap) in iface.slaves.iter_mut().zip(&iface.snapshot) {
+        if s.surface != surface {
+            continue;
+        }
+        let a = s.node as usize;
+        r[a] = sub(r[a], s.force);
+        if s.surface {
+            if s.face != NONE {
+                let face = iface.b_faces[s.face as usize];
+                let phi = geom::face_shape(s.xi[0], s.xi[1]);
+                for j in 0..4 {
+                    let k = face[j] as usize;
+                    r[k] = axpy(r[k], phi[j], s.force);
+                }
+            }
+        } else if s.partner != NONE {
+            let b = s.partner as usize;
+            r[b] = geom::add(r[b], s.force);
+        }
+        let (slid, broke) = (s.slid, s.broke);
+        s.clone_from(snap);
+        s.slid = slid;
+        s.broke = broke;
+        s.force = [0.0; 3];
     }
 }
 

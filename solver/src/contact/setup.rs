@@ -300,6 +300,10 @@ pub(super) fn build_interface(
             tangential: [0.0; 3],
             face: NONE,
             xi: [0.0; 2],
+            force: [0.0; 3],
+            slid: false,
+            broke: false,
+            gap_start: 0.0,
         });
     }
     match spec.mode {
@@ -323,6 +327,8 @@ pub(super) fn build_interface(
         slaves,
         b_faces: gb.faces,
         b_face_size: gb.max_diag,
+        snapshot: Vec::new(),
+        prev_force: Vec::new(),
     })
 }
 

@@ -21,7 +21,9 @@
 //!   row leaves the system;
 //! - open (ḡᵢ ≥ 0, or λᵢ < 0 after a solve): Rᵢ = 0 (eq. (15)).
 //!
-//! The system is assembled as a sparse matrix and solved with faer's sparse LU. Starting
+//! The system is assembled as a sparse matrix and solved with faer: a sparse Cholesky of
+//! the scalar m × m H for the three components at once while all closed nodes stick, a
+//! sparse LU of the non-symmetric system once some slide. Starting
 //! with every closed node sticking, nodes with λ < 0 are released and sticking nodes with
 //! |T| > μs λ switch to sliding (t̂ = T/|T| of that solve); the loop repeats until nothing
 //! changes; then open nodes that their neighbours' forces (through shared face nodes) would
@@ -310,7 +312,7 @@ fn polish(s: &mut Scratch, dt: f64, mu_s: f64, mu_d: f64) -> std::result::Result
                 }
             }
             let a = &s.active[i];
-            if a.released || (a.mode == Mode::Open && a.gbar - dot(coupled, a.n) >= 0.0) {
+            if a.mode == Mode::Open && a.gbar - dot(coupled, a.n) >= 0.0 {
                 continue;
             }
             // Local problem: relative position after the step d = d̃ − Hᵢᵢ Rᵢ.
@@ -350,6 +352,123 @@ fn polish(s: &mut Scratch, dt: f64, mu_s: f64, mu_d: f64) -> std::result::Result
     ))
 }
 
+/// All closed nodes stick: (H R)ᵢ = bᵢ with the scalar, symmetric positive definite H acting
+/// on each component, so one sparse Cholesky factorisation of the m × m matrix H solves the
+/// three components at once. Returns false (nothing written) if H is not positive definite.
+fn stick_solve(s: &mut Scratch, m: usize) -> bool {
+    s.triplets.clear();
+    for &(i, k, h) in &s.h {
+        let (ai, ak) = (&s.active[i], &s.active[k]);
+        if ai.mode == Mode::Stick && ak.mode == Mode::Stick && ai.offset >= ak.offset {
+            s.triplets
+                .push(Triplet::new(ai.offset / 3, ak.offset / 3, h));
+        }
+    }
+    let Ok(mat) = SparseColMat::<usize, f64>::try_new_from_triplets(m, m, &s.triplets) else {
+        return false;
+    };
+    let Ok(llt) = mat.sp_cholesky(faer::Side::Lower) else {
+        return false;
+    };
+    let mut rhs = Mat::<f64>::zeros(m, 3);
+    for a in &s.active {
+        if a.mode == Mode::Stick {
+            for d in 0..3 {
+                rhs[(a.offset / 3, d)] = a.rhs[d];
+            }
+        }
+    }
+    llt.solve_in_place(rhs.as_mut());
+    if (0..m).any(|i| (0..3).any(|d| !rhs[(i, d)].is_finite())) {
+        return false;
+    }
+    for a in s.active.iter_mut() {
+        a.r = match a.mode {
+            Mode::Stick => [0, 1, 2].map(|d| rhs[(a.offset / 3, d)]),
+            _ => [0.0; 3],
+        };
+    }
+    true
+}
+
+/// Sticking (3 unknowns) and sliding (1 unknown) nodes together: the non-symmetric system
+/// of eqs. (20)–(21) with the sliding rows of (21) removed, sparse LU. Returns false if it
+/// is singular.
+fn general_solve(s: &mut Scratch, size: usize) -> bool {
+    s.triplets.clear();
+    for &(i, k, h) in &s.h {
+        let (ai, ak) = (&s.active[i], &s.active[k]);
+        let (oi, ok) = (ai.offset, ak.offset);
+        match (ai.mode, ak.mode) {
+            (Mode::Open, _) | (_, Mode::Open) => {}
+            (Mode::Stick, Mode::Stick) => {
+                for d in 0..3 {
+                    s.triplets.push(Triplet::new(oi + d, ok + d, h));
+                }
+            }
+            (Mode::Stick, Mode::Slide) => {
+                for d in 0..3 {
+                    s.triplets.push(Triplet::new(oi + d, ok, h * ak.dir[d]));
+                }
+            }
+            (Mode::Slide, Mode::Stick) => {
+                for d in 0..3 {
+                    s.triplets.push(Triplet::new(oi, ok + d, h * ai.n[d]));
+                }
+            }
+            (Mode::Slide, Mode::Slide) => {
+                s.triplets.push(Triplet::new(oi, ok, h * dot(ai.n, ak.dir)));
+            }
+        }
+    }
+    let mut rhs = Mat::<f64>::zeros(size, 1);
+    for a in &s.active {
+        match a.mode {
+            Mode::Stick => {
+                for d in 0..3 {
+                    rhs[(a.offset + d, 0)] = a.rhs[d];
+                }
+            }
+            Mode::Slide => rhs[(a.offset, 0)] = a.gbar,
+            Mode::Open => {}
+        }
+    }
+    let Ok(mat) = SparseColMat::<usize, f64>::try_new_from_triplets(size, size, &s.triplets) else {
+        return false;
+    };
+    let Ok(lu) = mat.sp_lu() else {
+        return false;
+    };
+    lu.solve_in_place(rhs.as_mut());
+    if (0..size).any(|i| !rhs[(i, 0)].is_finite()) {
+        return false;
+    }
+    for a in s.active.iter_mut() {
+        a.r = match a.mode {
+            Mode::Stick => [0, 1, 2].map(|d| rhs[(a.offset + d, 0)]),
+            Mode::Slide => scale(rhs[(a.offset, 0)], a.dir),
+            Mode::Open => [0.0; 3],
+        };
+    }
+    true
+}
+
+/// H restricted to the active set is singular (more constraints than free masses: e.g.
+/// fully constrained nodes of a pressing on one free face node). The direct solve is left
+/// to the Gauss–Seidel polish, which handles a semi-definite H: start from R = 0.
+fn singular_fallback(s: &mut Scratch, iter: usize) -> usize {
+    for a in s.active.iter_mut() {
+        a.r = [0.0; 3];
+        a.released = false;
+        a.mode = if a.gbar < 0.0 && !a.fixed {
+            Mode::Stick
+        } else {
+            Mode::Open
+        };
+    }
+    iter
+}
+
 fn active_set(
     s: &mut Scratch,
     dt: f64,
@@ -382,61 +501,11 @@ fn active_set(
         if size == 0 {
             return Ok(iter);
         }
-        s.triplets.clear();
-        for &(i, k, h) in &s.h {
-            let (ai, ak) = (&s.active[i], &s.active[k]);
-            let (oi, ok) = (ai.offset, ak.offset);
-            match (ai.mode, ak.mode) {
-                (Mode::Open, _) | (_, Mode::Open) => {}
-                (Mode::Stick, Mode::Stick) => {
-                    for d in 0..3 {
-                        s.triplets.push(Triplet::new(oi + d, ok + d, h));
-                    }
-                }
-                (Mode::Stick, Mode::Slide) => {
-                    for d in 0..3 {
-                        s.triplets.push(Triplet::new(oi + d, ok, h * ak.dir[d]));
-                    }
-                }
-                (Mode::Slide, Mode::Stick) => {
-                    for d in 0..3 {
-                        s.triplets.push(Triplet::new(oi, ok + d, h * ai.n[d]));
-                    }
-                }
-                (Mode::Slide, Mode::Slide) => {
-                    s.triplets.push(Triplet::new(oi, ok, h * dot(ai.n, ak.dir)));
-                }
-            }
+        let solved = s.active.iter().all(|a| a.mode != Mode::Slide) && stick_solve(s, size / 3);
+        if !solved && !general_solve(s, size) {
+            return Ok(singular_fallback(s, iter));
         }
-        let mut rhs = Mat::<f64>::zeros(size, 1);
-        for a in &s.active {
-            match a.mode {
-                Mode::Stick => {
-                    for d in 0..3 {
-                        rhs[(a.offset + d, 0)] = a.rhs[d];
-                    }
-                }
-                Mode::Slide => rhs[(a.offset, 0)] = a.gbar,
-                Mode::Open => {}
-            }
-        }
-        let mat = SparseColMat::<usize, f64>::try_new_from_triplets(size, size, &s.triplets)
-            .map_err(|e| format!("cannot assemble the contact matrix: {e:?}"))?;
-        let lu = mat
-            .sp_lu()
-            .map_err(|e| format!("singular contact matrix ({size} unknowns): {e:?}"))?;
-        lu.solve_in_place(rhs.as_mut());
         let mut changed = false;
-        for a in s.active.iter_mut() {
-            a.r = match a.mode {
-                Mode::Stick => [0, 1, 2].map(|d| rhs[(a.offset + d, 0)]),
-                Mode::Slide => scale(rhs[(a.offset, 0)], a.dir),
-                Mode::Open => [0.0; 3],
-            };
-            if a.r.iter().any(|v| !v.is_finite()) {
-                return Err("non-finite contact force (singular system)".into());
-            }
-        }
         for a in s.active.iter_mut() {
             if a.mode == Mode::Open {
                 continue;
@@ -452,7 +521,8 @@ fn active_set(
             if a.mode == Mode::Stick {
                 let t = tangential(a.r, a.n);
                 let tm = norm(t);
-                if tm > mu_s * lambda * (1.0 + 1e-12) {
+                let mu = if a.slid { mu_d } else { mu_s };
+                if tm > mu * lambda * (1.0 + 1e-12) {
                     a.mode = Mode::Slide;
                     a.slid = true;
                     a.dir = axpy(scale(-1.0, a.n), mu_d / tm, t);
@@ -580,8 +650,10 @@ pub(super) fn solve(
         let dbar = sub(cbar, pred(sl.node));
         sl.face = fi;
         sl.xi = [xi, eta];
-        s.active
-            .push(new_active(si, sl.node, face, phi, n, dbar, dn));
+        sl.gap_start = dot(dn, n);
+        let mut a = new_active(si, sl.node, face, phi, n, dbar, dn);
+        a.slid = sl.slid;
+        s.active.push(a);
     }
     if s.active.iter().all(|a| a.mode == Mode::Open) {
         for a in &s.active {
@@ -642,6 +714,8 @@ pub(super) fn solve(
         sl.slip = add(sl.slip, dslip);
         let lambda = -dot(a.r, a.n);
         sl.normal_force = if a.mode == Mode::Open { 0.0 } else { lambda };
+        sl.force = a.r;
+        sl.slid |= a.slid;
         sl.tangential = tangential(a.r, a.n);
         sl.state = match a.mode {
             Mode::Stick => PairState::Stick,

@@ -534,3 +534,71 @@ fn w6_pairs_switch_to_surface_after_large_slip() {
     assert!(within(ke, 1135.10, 0.01), "kinetic {ke}");
     assert_eq!(counts, ([0; 4], [0, 0, 4, 0]));
 }
+
+#[test]
+fn interface_spec_reads_from_toml_with_defaults() {
+    let spec: InterfaceSpec = toml::from_str(
+        r#"
+        name = "lining"
+        surface_a = "lining-rock"
+        surface_b = "rock-lining"
+        mu_s = 0.6
+        mu_d = 0.5
+        cohesion = 2.0e5
+        "#,
+    )
+    .unwrap();
+    assert_eq!(
+        spec,
+        InterfaceSpec::new("lining", "lining-rock", "rock-lining", 0.6, 0.5, 2e5)
+    );
+    let spec: InterfaceSpec = toml::from_str(
+        r#"
+        name = "w6"
+        surface_a = "top.zmin"
+        surface_b = "base.zmax"
+        mu_s = 0.5
+        mu_d = 0.4
+        cohesion = 0.0
+        tensile_strength = 1.0e5
+        mode = "surface"
+        slip_threshold = 0.1
+        tolerance = 1e-3
+        "#,
+    )
+    .unwrap();
+    assert_eq!(spec.mode, ContactMode::Surface);
+    assert_eq!(spec.tensile_strength, Some(1e5));
+    assert_eq!(spec.slip_threshold, Some(0.1));
+    let e = toml::from_str::<InterfaceSpec>(
+        "name = \"x\"\nsurface_a = \"a\"\nsurface_b = \"b\"\nmu_s = 0.5\nmu_d = 0.4\ncohesion = 0.0\nfriction = 1.0\n",
+    )
+    .unwrap_err();
+    assert!(e.to_string().contains("friction"), "{e}");
+}
+
+#[test]
+fn compute_rejects_inconsistent_inputs() {
+    let mut rig = Rig::w9();
+    let n = rig.mesh.n_nodes();
+    let zero = vec![[0.0; 3]; n];
+    let short = vec![[0.0; 3]; n - 1];
+    let mut inp = ContactStepInput {
+        step: 7,
+        time: 0.0,
+        dt: DT,
+        inv_mass: &rig.w,
+        coords: &rig.mesh.coords,
+        u_old: &zero,
+        u_pred: &short,
+        v_pred: &zero,
+    };
+    let e = rig.sys.compute(&inp, &mut rig.r).unwrap_err();
+    assert!(contact_message(e).contains("step 7"));
+    inp.u_pred = &zero;
+    inp.dt = 0.0;
+    let e = rig.sys.compute(&inp, &mut rig.r).unwrap_err();
+    assert!(contact_message(e).contains("time step"));
+    assert!(!rig.sys.is_empty());
+    assert!(ContactSystem::new(&rig.mesh, &[], "t").unwrap().is_empty());
+}

@@ -318,6 +318,18 @@ proptest! {
     }
 }
 
+/// One point-to-surface node of a [`Group`]: inverse mass, shape functions φ, face
+/// corner weights, face nodes, normal, predicted and old relative displacements.
+type GroupNode = (
+    f64,
+    [f64; 4],
+    [f64; 4],
+    [u32; 4],
+    [f64; 3],
+    [f64; 3],
+    [f64; 3],
+);
+
 /// A group of point-to-surface nodes on a 2 × 2 patch of a (warped) master surface.
 #[derive(Debug, Clone)]
 struct Group {
@@ -325,15 +337,7 @@ struct Group {
     mu_s: f64,
     mu_d: f64,
     w_master: Vec<f64>,
-    nodes: Vec<(
-        f64,
-        [f64; 4],
-        [f64; 4],
-        [u32; 4],
-        [f64; 3],
-        [f64; 3],
-        [f64; 3],
-    )>,
+    nodes: Vec<GroupNode>,
     xs: Vec<[f64; 3]>,
 }
 

@@ -318,8 +318,9 @@ proptest! {
     }
 }
 
-/// One point-to-surface node of a [`Group`]: inverse mass, shape functions φ, face
-/// corner weights, face nodes, normal, predicted and old relative displacements.
+/// One point-to-surface node of a [`Group`]: its inverse mass, two 4-vectors (the second
+/// the shape functions φ at its contact point), the face's node numbers, its normal and
+/// two relative displacements (see where `g.nodes[i]` is destructured).
 type GroupNode = (
     f64,
     [f64; 4],

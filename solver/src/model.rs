@@ -36,14 +36,71 @@ pub struct Rayleigh {
 /// The stable time step and the element that limits it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct StableStep {
-    /// min_e L_e / c_p,e (s), without safety factor.
+    /// min_e min(L_e / c_p,e, 2/ω_max,e) (s), without safety factor.
     pub critical: f64,
     /// Limiting element (global id).
     pub element: usize,
-    /// Its characteristic length (m).
+    /// Its effective length c_p · Δt_e (m): V/A_max, or less where the element's own
+    /// eigenvalue bound governs.
     pub length: f64,
     /// Its P-wave speed (m/s).
     pub speed: f64,
+}
+
+/// The critical step of the mesh: per element min(L_e/c_p, 2/ω_max,e), the eigenvalue
+/// computed once per distinct element shape (structured meshes repeat a few shapes).
+fn stable_step(
+    mesh: &Mesh,
+    groups: &[ElementGroup],
+    regions: &[RegionSetup],
+) -> Result<StableStep> {
+    use crate::element::stable_step::element_max_eigenvalue;
+    let mut stable = StableStep {
+        critical: f64::INFINITY,
+        element: 0,
+        length: 0.0,
+        speed: 0.0,
+    };
+    for g in groups {
+        let c = g.material.elastic().p_wave_speed();
+        let hourglass = regions
+            .iter()
+            .find(|s| s.region == g.name)
+            .map_or(0.0, |s| s.hourglass);
+        let mut cache: std::collections::HashMap<[i64; 24], f64> = std::collections::HashMap::new();
+        for (le, &l) in g.char_length.iter().enumerate() {
+            let e = g.elements[le] as usize;
+            let x = mesh.element_coords(e);
+            // Shape key: coordinates relative to node 0, quantised at 1e-9 of the length.
+            let key: [i64; 24] = std::array::from_fn(|k| {
+                let (a, d) = (k / 3, k % 3);
+                ((x[a][d] - x[0][d]) / (l * 1e-9)).round() as i64
+            });
+            let omega2 = match cache.get(&key) {
+                Some(&w) => w,
+                None => {
+                    let w = element_max_eigenvalue(&x, &g.material, g.integration, hourglass)
+                        .ok_or_else(|| DcfmError::BadElement {
+                            element: e,
+                            reason: "no positive stiffness eigenvalue (degenerate)".into(),
+                        })?;
+                    cache.insert(key, w);
+                    w
+                }
+            };
+            let dt = (l / c).min(2.0 / omega2.sqrt());
+            if dt < stable.critical {
+                // The length that gives this step at the P-wave speed.
+                stable = StableStep {
+                    critical: dt,
+                    element: e,
+                    length: dt * c,
+                    speed: c,
+                };
+            }
+        }
+    }
+    Ok(stable)
 }
 
 /// The model.
@@ -131,25 +188,7 @@ impl Model {
                 "node {n} belongs to no element (zero mass)"
             )));
         }
-        let mut stable = StableStep {
-            critical: f64::INFINITY,
-            element: 0,
-            length: 0.0,
-            speed: 0.0,
-        };
-        for g in &groups {
-            let c = g.material.elastic().p_wave_speed();
-            for (le, &l) in g.char_length.iter().enumerate() {
-                if l / c < stable.critical {
-                    stable = StableStep {
-                        critical: l / c,
-                        element: g.elements[le] as usize,
-                        length: l,
-                        speed: c,
-                    };
-                }
-            }
-        }
+        let stable = stable_step(&mesh, &groups, regions)?;
         let mut element_location = vec![(0, 0); mesh.n_elements()];
         for (gi, g) in groups.iter().enumerate() {
             for (le, &e) in g.elements.iter().enumerate() {

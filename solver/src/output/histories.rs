@@ -65,8 +65,8 @@ impl HistoryWriter {
     }
 
     /// Like [`HistoryWriter::open_append`], and also drops the rows whose first column (the
-    /// time) is greater than `time`: a run restarted from a checkpoint at `time` writes them
-    /// again.
+    /// time) is greater than `time` (beyond the 1e-9 relative precision of the written
+    /// times): a run restarted from a checkpoint at `time` writes them again.
     pub fn open_append_after(path: &Path, header: &[String], time: f64) -> Result<Self> {
         Self::open_resume(path, header, Some(time))
     }
@@ -114,7 +114,10 @@ impl HistoryWriter {
                             file: label(path),
                             message: format!("line {}: first column is not a time", i + 1),
                         })?;
-                    if first > t {
+                    // Times are written with ten significant digits: a row printed at the
+                    // restart time itself may read back up to half a unit in the last
+                    // place above it, and must be kept.
+                    if first > t + 1e-9 * t.abs() {
                         break;
                     }
                 }

@@ -70,6 +70,10 @@ pub struct Simulation {
     chunks: Vec<ChunkResult>,
     /// The next step is the first of the energy account (t⁰ is set there).
     energy_origin_pending: bool,
+    /// Largest energy scale seen so far (for the balance check).
+    peak_energy: f64,
+    /// Largest P-wave speed of the model's materials (m/s).
+    max_wave_speed: f64,
 }
 
 impl Simulation {
@@ -152,6 +156,12 @@ impl Simulation {
             prescribed_of,
             chunks: vec![ChunkResult::default(); n_chunks],
             energy_origin_pending: true,
+            peak_energy: 0.0,
+            max_wave_speed: model
+                .groups
+                .iter()
+                .map(|g| g.material.elastic().p_wave_speed())
+                .fold(0.0, f64::max),
             model,
         }
     }
@@ -166,6 +176,7 @@ impl Simulation {
             ..Default::default()
         };
         self.energy_origin_pending = true;
+        self.peak_energy = 0.0;
     }
 
     /// The energy account was restored (from a checkpoint): it has already started.
@@ -347,15 +358,26 @@ impl Simulation {
         if let Some((node, true, _)) = worst {
             return Err(self.instability(node as usize, "non-finite displacement or velocity"));
         }
-        if self.step > 20
-            && e.scale() > 0.0
-            && e.relative_residual() > 0.5
-            && e.kinetic > 0.5 * e.scale()
-        {
-            let node = worst.map_or(0, |w| w.0 as usize);
+        let scale = e.scale();
+        self.peak_energy = self.peak_energy.max(scale);
+        let (vmax_node, vmax) = worst.map_or((0, 0.0), |w| (w.0 as usize, w.2));
+        if vmax > 0.5 * self.max_wave_speed {
             return Err(self.instability(
-                node,
-                "energy balance lost (kinetic energy growing without input)",
+                vmax_node,
+                &format!(
+                    "velocity {vmax:.3e} m/s above half the largest wave speed ({:.1} m/s): strains of order one",
+                    self.max_wave_speed
+                ),
+            ));
+        }
+        let residual = e.residual();
+        if self.step > 20 && self.peak_energy > 0.0 && residual.abs() > 0.5 * self.peak_energy {
+            return Err(self.instability(
+                vmax_node,
+                &format!(
+                    "energy balance lost (residual {residual:.3e} J against a largest energy of {:.3e} J)",
+                    self.peak_energy
+                ),
             ));
         }
         // Commit.

@@ -85,6 +85,14 @@ fn history_header(output: &OutputSection, sim: &Simulation) -> Vec<String> {
             h.push(format!("damaged_volume_{k}_{}", g.name));
         }
     }
+    if let Some(c) = &sim.model.contact {
+        for (name, _) in c.state_areas() {
+            for k in ["stick", "slide", "separated", "surface"] {
+                h.push(format!("area_{k}_{name}"));
+            }
+        }
+        h.push("contact_friction_work".into());
+    }
     h
 }
 
@@ -113,6 +121,12 @@ fn history_row(sim: &Simulation, output: &OutputSection, row: &mut Vec<f64>) {
     }
     for g in sim.model.groups.iter().filter(|g| g.material.has_damage()) {
         row.extend(g.damaged_volume(output.damage_threshold));
+    }
+    if let Some(c) = &sim.model.contact {
+        for (_, a) in c.state_areas() {
+            row.extend(a);
+        }
+        row.push(c.friction_work());
     }
 }
 
@@ -152,28 +166,42 @@ fn write_state_vtu(sim: &Simulation, out: &Path, pvd: &mut PvdCollection) -> Res
     );
     let flat = |f: &[[f64; 3]]| -> Vec<f64> { f.iter().flatten().copied().collect() };
     let (u, v, a) = (flat(&sim.u), flat(&sim.v), flat(&sim.a));
+    let contact_fields = sim
+        .model
+        .contact
+        .as_ref()
+        .map(|c| c.node_fields(model.mesh.n_nodes()))
+        .unwrap_or_default();
+    let mut point_fields = vec![
+        VtuField {
+            name: "displacement",
+            components: 3,
+            values: &u,
+        },
+        VtuField {
+            name: "velocity",
+            components: 3,
+            values: &v,
+        },
+        VtuField {
+            name: "acceleration",
+            components: 3,
+            values: &a,
+        },
+    ];
+    for (name, components, values) in &contact_fields {
+        point_fields.push(VtuField {
+            name,
+            components: *components,
+            values,
+        });
+    }
     let name = format!("mesh_{:06}.vtu", sim.step);
     write_vtu(
         &out.join(&name),
         &model.mesh.coords,
         &model.mesh.elements,
-        &[
-            VtuField {
-                name: "displacement",
-                components: 3,
-                values: &u,
-            },
-            VtuField {
-                name: "velocity",
-                components: 3,
-                values: &v,
-            },
-            VtuField {
-                name: "acceleration",
-                components: 3,
-                values: &a,
-            },
-        ],
+        &point_fields,
         &[
             VtuField {
                 name: "stress",

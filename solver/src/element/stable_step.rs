@@ -27,18 +27,6 @@ pub fn characteristic_length(x: &[[f64; 3]; 8], volume: f64) -> f64 {
     volume / amax
 }
 
-#[cfg(test)]
-mod tests {
-    use super::*;
-    use crate::element::hex8_shape::{volume, NODE_XI};
-
-    #[test]
-    fn cube_length_is_side() {
-        let x = NODE_XI.map(|p| p.map(|c| 0.75 * (c + 1.0)));
-        assert!((characteristic_length(&x, volume(&x)) - 1.5).abs() < 1e-12);
-    }
-}
-
 /// Largest eigenvalue ω²_max of M_e⁻¹ K_e of one free element (lumped mass, initial
 /// elastic stiffness, hourglass stiffness included), by power iteration on the element's
 /// own force kernel. By the Irons–Treharne bound (Irons 1970; Belytschko, Liu & Moran
@@ -112,4 +100,16 @@ pub fn element_max_eigenvalue(
         }
     }
     Some(lambda)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::element::hex8_shape::{volume, NODE_XI};
+
+    #[test]
+    fn cube_length_is_side() {
+        let x = NODE_XI.map(|p| p.map(|c| 0.75 * (c + 1.0)));
+        assert!((characteristic_length(&x, volume(&x)) - 1.5).abs() < 1e-12);
+    }
 }

@@ -54,6 +54,9 @@ pub struct CubeSpec {
     pub velocity: [f64; 3],
     /// Constitutive model.
     pub material: CubeMaterial,
+    /// Instead of a cube: a slab of divisions × divisions × 4 elements split at mid-height
+    /// into two regions joined by a bonded DCFM interface of (divisions + 1)² node pairs.
+    pub interface: bool,
 }
 
 impl CubeSpec {
@@ -66,6 +69,15 @@ impl CubeSpec {
             hourglass: 0.05,
             velocity: [0.1, 0.05, -0.02],
             material: CubeMaterial::Elastic,
+            interface: false,
+        }
+    }
+
+    /// The interface slab of `divisions`² × 4 elements (see [`CubeSpec::interface`]).
+    pub fn interface_slab(divisions: usize) -> Self {
+        Self {
+            interface: true,
+            ..Self::new(divisions, Integration::OnePoint)
         }
     }
 
@@ -81,11 +93,22 @@ impl CubeSpec {
 
     /// Number of elements.
     pub fn elements(&self) -> usize {
-        self.divisions.pow(3)
+        if self.interface {
+            4 * self.divisions.pow(2)
+        } else {
+            self.divisions.pow(3)
+        }
     }
 
     /// Case name used in records and filters, e.g. `cube40_one_point`.
     pub fn name(&self) -> String {
+        if self.interface {
+            return format!(
+                "slab{}_interface_{}",
+                self.divisions,
+                self.integration.name()
+            );
+        }
         format!(
             "cube{}_{}{}",
             self.divisions,
@@ -97,6 +120,9 @@ impl CubeSpec {
     /// Build the model: rock (E 20 GPa, ν 0.25, ρ 2700 kg/m³), base face `rock.zmin`
     /// fixed in x, y and z, initial velocity on all nodes (zeroed on the base).
     pub fn model(&self) -> dcfm::Result<Model> {
+        if self.interface {
+            return self.slab_model();
+        }
         let n = self.divisions;
         let mesh = BoxMeshSpec::single(REGION, [0.0; 3], [self.edge; 3], [n, n, n])
             .build("benchmark cube")?;
@@ -120,6 +146,59 @@ impl CubeSpec {
         model.constraints.fix(&base, 0b111);
         let all: Vec<u32> = (0..model.mesh.n_nodes() as u32).collect();
         model.initial_velocity.push((all, self.velocity));
+        Ok(model)
+    }
+
+    /// The interface slab: lower block `rock`, upper block `lining`, split between them,
+    /// bonded interface (cohesion 2 MPa, μs 0.6, μd 0.5), base fixed, the upper block given
+    /// the initial velocity.
+    fn slab_model(&self) -> dcfm::Result<Model> {
+        use dcfm::contact::{ContactSystem, InterfaceSpec};
+        use dcfm::mesh::BlockSpec;
+        let n = self.divisions;
+        let h = self.edge / n as f64;
+        let block = |name: &str, z0: f64| BlockSpec {
+            name: name.to_string(),
+            region: None,
+            origin: [0.0, 0.0, z0],
+            size: [self.edge, self.edge, 2.0 * h],
+            divisions: [n, n, 2],
+            grading: [1.0; 3],
+        };
+        let spec = BoxMeshSpec {
+            blocks: vec![block(REGION, 0.0), block("lining", 2.0 * h)],
+            split: vec![[REGION.to_string(), "lining".to_string()]],
+            merge_tolerance: 1e-6,
+        };
+        let mesh = spec.build("interface slab")?;
+        let elastic = Elastic::new(REGION, 20e9, 0.25, 2700.0)?;
+        let setups: Vec<RegionSetup> = [REGION, "lining"]
+            .iter()
+            .map(|r| RegionSetup {
+                region: r.to_string(),
+                material: Material::Elastic(elastic),
+                integration: self.integration,
+                hourglass: self.hourglass,
+            })
+            .collect();
+        let mut model = Model::new(mesh, &setups, "interface slab")?;
+        let base = model.mesh.node_sets[&format!("{REGION}.zmin")].clone();
+        model.constraints.fix(&base, 0b111);
+        let top = model.mesh.nodes_of("lining").unwrap_or_default();
+        model.initial_velocity.push((top, self.velocity));
+        let interface = InterfaceSpec::new(
+            "slab",
+            &format!("lining-{REGION}"),
+            &format!("{REGION}-lining"),
+            0.6,
+            0.5,
+            2e6,
+        );
+        model.contact = Some(ContactSystem::new(
+            &model.mesh,
+            &[interface],
+            "interface slab",
+        )?);
         Ok(model)
     }
 

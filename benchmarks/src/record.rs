@@ -59,6 +59,9 @@ pub struct ThroughputRecord {
     /// throughput is then understated). Absent where the CPU time cannot be read.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub cpu_share: Option<f64>,
+    /// Share of the timed wall time spent in the contact phase (interface cases only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub contact_share: Option<f64>,
     /// `quick` (CI smoke sizes) or `standard`.
     #[serde(default)]
     pub mode: String,

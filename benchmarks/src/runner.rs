@@ -22,6 +22,9 @@ pub struct RunConfig {
     pub integrations: Vec<Integration>,
     /// Plastic-damage regimes, run with full integration at every size (issue #4).
     pub plastic_damage: Vec<CubeMaterial>,
+    /// Interface slabs (n² × 4 elements, (n+1)² DCFM pairs) whose contact phase is reported
+    /// as a share of the step (issue #3); run after the cubes.
+    pub interface_sizes: Vec<usize>,
     /// Thread counts; each case is timed on each, in this order, on the same simulation.
     pub threads: Vec<usize>,
     /// Warm-up steps before each timing; `None`: n + 5, enough for the waves from the base
@@ -48,6 +51,7 @@ impl RunConfig {
         Self {
             sizes: vec![20, 40],
             integrations: vec![Integration::OnePoint, Integration::Full],
+            interface_sizes: vec![100],
             plastic_damage: vec![
                 CubeMaterial::PlasticDamageElastic,
                 CubeMaterial::PlasticDamageDamaging,
@@ -67,6 +71,7 @@ impl RunConfig {
     pub fn quick() -> Self {
         Self {
             sizes: vec![4, 8],
+            interface_sizes: vec![8],
             min_wall_s: 0.1,
             min_steps: 5,
             max_steps: 200,
@@ -92,6 +97,16 @@ impl RunConfig {
                 {
                     out.push(spec);
                 }
+            }
+        }
+        for &m in &self.interface_sizes {
+            let spec = CubeSpec::interface_slab(m);
+            if self
+                .filter
+                .as_deref()
+                .is_none_or(|f| spec.name().contains(f))
+            {
+                out.push(spec);
             }
         }
         out
@@ -184,6 +199,7 @@ pub fn run(
         let bytes_per_element = sim.model.bytes_per_element();
         let nodes = sim.model.mesh.n_nodes();
         for &threads in &config.threads {
+            let contact_before = sim.contact_seconds;
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(threads)
                 .build()?;
@@ -197,6 +213,9 @@ pub fn run(
                 )
             })?;
             let wall_s = timing.wall.as_secs_f64().max(1e-9);
+            let contact_share = spec
+                .interface
+                .then(|| (sim.contact_seconds - contact_before) / wall_s);
             let steps_per_s = timing.steps as f64 / wall_s;
             let record = ThroughputRecord {
                 case: spec.name(),
@@ -215,6 +234,7 @@ pub fn run(
                 cpus,
                 cpu_share: timing.cpu_s.map(|c| c / (wall_s * threads as f64)),
                 mode: config.mode.clone(),
+                contact_share,
                 profile: profile.to_string(),
             };
             if let Some(path) = &config.history {

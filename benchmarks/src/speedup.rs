@@ -84,6 +84,7 @@ mod tests {
             timestamp: String::new(),
             cpus: 2,
             cpu_share: None,
+            contact_share: None,
             mode: "quick".into(),
             profile: "release".into(),
         }

@@ -1,4 +1,4 @@
-//! The throughput targets of issue #2, checked against a set of records.
+//! The throughput targets of issues #2, #3 and #4, checked against a set of records.
 
 use crate::record::ThroughputRecord;
 use crate::speedup::speedups;
@@ -9,6 +9,8 @@ pub const ONE_POINT_40_RATE: f64 = 1.0e7;
 pub const FULL_40_RATE: f64 = 4.0e6;
 /// Fully integrated plastic-damage 40³ in the elastic regime on 2 threads (issue #4).
 pub const PLASTIC_DAMAGE_40_RATE: f64 = 1.5e6;
+/// Largest share of a step spent in the contact phase with ≥ 10⁴ interface pairs (issue #3).
+pub const MAX_CONTACT_SHARE: f64 = 0.15;
 /// 2 threads over 1 thread, every case.
 pub const TWO_THREAD_SPEEDUP: f64 = 1.7;
 /// The speed-up target applies to cases of at least this many elements (20³): below, the
@@ -76,6 +78,18 @@ pub fn check(records: &[ThroughputRecord]) -> Vec<TargetCheck> {
                 machine_busy: busy,
             });
         }
+    }
+    for r in records.iter().filter(|r| r.contact_share.is_some()) {
+        let share = r.contact_share.unwrap_or(0.0);
+        out.push(TargetCheck {
+            target: format!(
+                "{}, {} thread(s): contact phase <= {MAX_CONTACT_SHARE} of the step",
+                r.case, r.threads
+            ),
+            value: share,
+            met: share <= MAX_CONTACT_SHARE,
+            machine_busy: starved(r),
+        });
     }
     let mut seen: Vec<&str> = Vec::new();
     for r in records.iter().filter(|r| !r.case.contains("_pd_")) {

@@ -56,6 +56,8 @@ pub struct Simulation {
     pub a: Vec<[f64; 3]>,
     /// Energies at the last completed step.
     pub energies: Energies,
+    /// Wall time spent in the contact phase (stage 4) so far (s), for the benchmarks.
+    pub contact_seconds: f64,
     u_next: Vec<[f64; 3]>,
     v_next: Vec<[f64; 3]>,
     f_int: Vec<[f64; 3]>,
@@ -72,6 +74,8 @@ pub struct Simulation {
     energy_origin_pending: bool,
     /// Largest energy scale seen so far (for the balance check).
     peak_energy: f64,
+    /// Consecutive steps with the balance residual above half of `peak_energy`.
+    unbalanced_steps: u32,
     /// Largest P-wave speed of the model's materials (m/s).
     max_wave_speed: f64,
 }
@@ -156,7 +160,9 @@ impl Simulation {
             prescribed_of,
             chunks: vec![ChunkResult::default(); n_chunks],
             energy_origin_pending: true,
+            contact_seconds: 0.0,
             peak_energy: 0.0,
+            unbalanced_steps: 0,
             max_wave_speed: model
                 .groups
                 .iter()
@@ -305,6 +311,7 @@ impl Simulation {
         }
         self.contact_nodes.clear();
         if let Some(contact) = self.model.contact.as_mut() {
+            let started = std::time::Instant::now();
             let input = ContactStepInput {
                 step: self.step,
                 time: t,
@@ -318,6 +325,7 @@ impl Simulation {
             contact.compute(&input, &mut self.r)?;
             self.contact_nodes
                 .extend_from_slice(contact.touched_nodes());
+            self.contact_seconds += started.elapsed().as_secs_f64();
         }
         // 5. Correction at the touched nodes (with the energy fix-up).
         let mut contact_fix: EnergyParts = [0.0; 11];
@@ -370,12 +378,21 @@ impl Simulation {
                 ),
             ));
         }
+        // The balance is O(Δt²) in absolute terms; where the motion itself is only a few
+        // steps old (a node just released, all energies at round-off) that can be a large
+        // fraction of the energies, so only a residual that stays above half the largest
+        // energy for 10 steps in a row (a growing instability) stops the run.
         let residual = e.residual();
-        if self.step > 20 && self.peak_energy > 0.0 && residual.abs() > 0.5 * self.peak_energy {
+        if self.peak_energy > 0.0 && residual.abs() > 0.5 * self.peak_energy {
+            self.unbalanced_steps += 1;
+        } else {
+            self.unbalanced_steps = 0;
+        }
+        if self.step > 20 && self.unbalanced_steps >= 10 {
             return Err(self.instability(
                 vmax_node,
                 &format!(
-                    "energy balance lost (residual {residual:.3e} J against a largest energy of {:.3e} J)",
+                    "energy balance lost for 10 steps (residual {residual:.3e} J against a largest energy of {:.3e} J)",
                     self.peak_energy
                 ),
             ));

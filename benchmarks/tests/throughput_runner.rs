@@ -25,6 +25,7 @@ fn tiny(history: Option<PathBuf>) -> RunConfig {
         max_steps: 8,
         history,
         plastic_damage: Vec::new(),
+        interface_sizes: Vec::new(),
         ..RunConfig::quick()
     }
 }
@@ -165,4 +166,24 @@ fn filter_and_no_record() {
         ..tiny(None)
     };
     assert!(run(&zero_threads, |_| {}).is_err());
+}
+
+#[test]
+fn interface_slab_reports_the_contact_share() {
+    let config = RunConfig {
+        integrations: Vec::new(),
+        interface_sizes: vec![4],
+        threads: vec![1],
+        ..tiny(None)
+    };
+    let records = run(&config, |_| {}).expect("interface slab run");
+    assert_eq!(records.len(), 1);
+    let r = &records[0];
+    assert_eq!(r.case, "slab4_interface_one_point");
+    assert_eq!(r.elements, 64);
+    let share = r.contact_share.expect("contact share recorded");
+    assert!(share > 0.0 && share < 1.0, "{share}");
+    assert!(targets::check(&records)
+        .iter()
+        .any(|c| c.target.contains("contact phase")));
 }

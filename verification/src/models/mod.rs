@@ -1,3 +1,4 @@
 //! Model builders shared by the cases.
 
 pub mod column;
+pub mod contact_blocks;

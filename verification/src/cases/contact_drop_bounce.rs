@@ -5,7 +5,7 @@
 //! re-contact, ending in static equilibrium (Σλ = m g), with the gap closed exactly.
 //!
 //! ```text
-//!        ┌────┐ block 1 × 1 × 0.5 m (2 × 2 × 4 elements), E 0.1 GPa, ν 0, ρ 2000 (1000 kg)
+//!        ┌────┐ block 1 × 1 × 0.5 m (2 × 2 × 8 elements), E 0.1 GPa, ν 0, ρ 2000 (1000 kg)
 //!        └────┘   ↓ g, released at rest 0.05 m above the base
 //!   ══════════════ base 2 × 2 × 0.5 m (4 × 4 × 1), fixed; block at x, y ∈ [0.6, 1.6]
 //! ```
@@ -14,13 +14,18 @@
 //! faces), μs 0.5, μd 0.4, no cohesion. Damping: stiffness-proportional β = 0.78 ms (ξ 0.3
 //! at the block's first axial mode ω₁ = (π/2) c/H = 700 rad/s) — it takes the elastic
 //! energy out of the rebounds and does no work on the free fall.
+//! Energy (W12): the largest residual over the run is a transient of the impact step —
+//! the bottom layer stops at once (its kinetic energy goes to the contact row) and the
+//! half-step bookkeeping lags by one to three steps, after which the residual is back at
+//! 6e-7 of the largest energy. The peak scales with the bottom layer's mass: 3.06 % with 4
+//! elements over H (fails W12's 2 %), 0.78 % with 8 — hence 8.
 //! Reference: impact speed √(2 g d) = 0.990 m/s at t = √(2d/g) = 0.101 s; at rest the
 //! block carries its weight, Σλ = m g = 9810 N, its bottom sits on the base (gap 0) and its
 //! centre of mass is d + ρ g H²/(3E) = 0.05 + 1.6e-5 m below the start (uniaxial stress
 //! under self-weight, ν = 0).
 //! Tolerances (own): rest force ±1 %; rest displacement of the centre of mass ±1 % of d;
 //! penetration ≤ 1e-4 × the shortest face edge (the contact tolerance); kinetic energy at
-//! the end ≤ 1e-6 m g d; sag ±3 % (4 linear elements over H); energy residual ≤ 2 % (W12); impact time ±2Δt; at least one separation after the first contact
+//! the end ≤ 1e-6 m g d; sag ±3 % (8 linear elements over H); energy residual ≤ 2 % (W12); impact time ±2Δt; at least one separation after the first contact
 //! followed by a re-contact.
 
 use dcfm::contact::{ContactMode, ContactSystem, InterfaceSpec};
@@ -41,6 +46,8 @@ const DROP: f64 = 0.05;
 const E: f64 = 1e8;
 const RHO: f64 = 2000.0;
 const HEIGHT: f64 = 0.5;
+/// Elements over the height.
+const NZ: usize = 8;
 
 /// What the drop measured.
 #[derive(Clone, Copy, Debug, Default)]
@@ -64,7 +71,7 @@ pub fn build() -> Result<Simulation> {
     let mesh = BoxMeshSpec {
         blocks: vec![
             block("base", [0.0, 0.0, -0.5], [2.0, 2.0, 0.5], [4, 4, 1]),
-            block("box", [0.6, 0.6, DROP], [1.0, 1.0, HEIGHT], [2, 2, 4]),
+            block("box", [0.6, 0.6, DROP], [1.0, 1.0, HEIGHT], [2, 2, NZ]),
         ],
         split: vec![],
         merge_tolerance: 1e-6,
@@ -180,7 +187,7 @@ pub fn run() -> Result<Vec<CheckRow>> {
         sag,
         -DROP - m.final_com_z,
         0.03,
-        "uniaxial stress under self-weight; ±3 %: 4 linear elements over H",
+        "uniaxial stress under self-weight; ±3 %: 8 linear elements over H",
     )
     .within(
         "W12 energy residual / largest energy",

@@ -19,10 +19,11 @@
 //!    slides any more.
 //! 2. One-way sliding: gravity tilted by θ (sinθ = 0.125) and μ = 0.225/cosθ, so the yield
 //!    acceleration is g(μ cosθ − sinθ) = 0.1 g downslope and g(μ cosθ + sinθ) = 0.35 g
-//!    > 0.3 g upslope (never reached: one-way); a_b = 0.3 g sin(2π·1 Hz·t) along the slope.
+//!    upslope, above the 0.3 g amplitude (never reached: one-way); a_b = 0.3 g sin(2π·1 Hz·t) along the slope.
 //!    Slip per cycle = x_rel(2 s) − x_rel(1 s) (the sliding episode that starts at
 //!    t ≈ 0.55 s runs past 1 s, so the first cycle is shorter; from the second on every
 //!    cycle slides the same).
+//!
 //! Reference: VERIFICATION.md W7: V²/(2Ng)(1 − N/A) = 0.14715 m, slip ends at A t0/N = 0.5 s
 //! after the pulse start; one-way 0.17665 m per cycle (Newmark 1965).
 //! Tolerance ±3 % (W7; the slip end ±3 % of 0.5 s).

@@ -15,6 +15,7 @@
 //! 1. Tension: F = 10⁶ t N (+z) until t = 0.0505 s, then −50 kN (compression) held.
 //! 2. Shear: N = 50 kN compressive (ramped over 10 ms, held), shear S = 10⁶ (t − 0.02) N
 //!    along x from t = 0.02 s.
+//!
 //! Parameters: c = 0.2 MPa (tensile strength = c), μs 0.6, μd 0.45.
 //! Reference (VERIFICATION.md W8): cA = 50 kN, debond at t = 0.05 s; tensile capacity
 //! zero afterwards; recompression transmits the 50 kN; slip starts at cA + μs N = 80 kN

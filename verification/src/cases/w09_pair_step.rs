@@ -28,6 +28,9 @@ const SOURCE: &str = "VERIFICATION.md W9, eqs. (6)–(15)";
 const DT: f64 = 1e-3;
 const TOL: f64 = 1e-10;
 
+/// (R on a, R on b) of the first pair, state counts, largest difference between pairs.
+type StepOutcome = ([f64; 3], [f64; 3], [usize; 4], f64);
+
 struct Rig {
     mesh: Mesh,
     sys: ContactSystem,
@@ -59,7 +62,7 @@ impl Rig {
 
     /// One step from rest with load `f` on every node of a: (R on a, R on b) of the first
     /// pair, the state counts, and the largest difference between pairs.
-    fn step(&mut self, f: [f64; 3]) -> Result<([f64; 3], [f64; 3], [usize; 4], f64)> {
+    fn step(&mut self, f: [f64; 3]) -> Result<StepOutcome> {
         let n = self.mesh.n_nodes();
         for &k in self.sys.touched_nodes() {
             self.r[k as usize] = [0.0; 3];

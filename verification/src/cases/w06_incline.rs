@@ -67,6 +67,11 @@ pub struct InclineMeasures {
     pub kinetic: f64,
     /// Largest |energy residual| / largest energy over the run.
     pub energy_residual: f64,
+    /// Nodes of surface a sliding at the end: point-to-point, point-to-surface.
+    pub sliding_pairs: usize,
+    pub sliding_surface: usize,
+    /// Nodes of surface a.
+    pub nodes_a: usize,
 }
 
 /// Build the block on its base; `surface`: non-matching base, point-to-surface contact.
@@ -143,7 +148,11 @@ pub fn measure(
     let (m, u, v) = centre_of_mass(&sim, &nodes);
     let g = sim.model.gravity.as_ref().expect("gravity").acceleration;
     let contact = sim.model.contact.as_ref().expect("contact");
+    let (p, sc) = contact.state_counts(0);
     Ok(InclineMeasures {
+        sliding_pairs: p[2],
+        sliding_surface: sc[2],
+        nodes_a: contact.pairs(0).len(),
         x: u[0],
         v: v[0],
         mass: m,
@@ -210,6 +219,30 @@ pub fn run() -> Result<Vec<CheckRow>> {
             m.energy_residual,
             "VERIFICATION.md W12",
         );
+        let sliding = if surface {
+            m.sliding_surface
+        } else {
+            m.sliding_pairs
+        };
+        ch.absolute(
+            &format!(
+                "{tag}: nodes sliding at 1 s (all {} of surface a)",
+                m.nodes_a
+            ),
+            m.nodes_a as f64,
+            sliding as f64,
+            0.0,
+            "mode of the interface",
+        );
+        if surface {
+            ch.within(
+                "surface: base faces crossed by each node (0.075 m faces)",
+                10.0,
+                1e6,
+                (m.x / 0.075).floor(),
+                "VERIFICATION.md W6 (large slip across many faces)",
+            );
+        }
         if !surface {
             let m = measure(20.0, 0.3, 0.25, surface, 1.0)?;
             ch.relative(

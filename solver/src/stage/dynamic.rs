@@ -305,8 +305,7 @@ impl Simulation {
                 v_pred: &self.v_next,
             };
             contact.compute(&input, &mut self.r)?;
-            self.contact_nodes
-                .extend_from_slice(contact.touched_nodes());
+            self.contact_nodes.extend_from_slice(contact.touched_nodes());
         }
         // 5. Correction at the touched nodes (with the energy fix-up).
         let mut contact_fix: EnergyParts = [0.0; 11];

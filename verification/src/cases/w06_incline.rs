@@ -26,7 +26,7 @@
 //! a 2 m footprint keeps λ within ±0.9 %. ν = 0: no Poisson push at the edges. βK does no
 //! work on rigid motion; the base is E 1 MPa (rigid by its constraints, soft so that it
 //! does not limit Δt).
-//! Measured: the block's centre of mass (x, v) at t = 1 s, the gravity work m g·Δx_c,
+//! Measured: the plate's centre of mass (x, v) at t = 1 s after the ramp's midpoint, the gravity work m g·Δx_c,
 //! the contact's friction work, the kinetic energy ½ m v_c².
 //! Reference: VERIFICATION.md W6: 30°/μs 0.6 sticks; 30°/μs 0.5/μd 0.4 a = 1.5067 m/s²,
 //! 0.7534 m in 1 s, gravity work 3695.22 J = friction 2560.12 J + kinetic 1135.10 J;

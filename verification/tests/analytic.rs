@@ -44,7 +44,10 @@ fn w13_stable_step() {
 #[test]
 fn every_case_is_tested_here() {
     let ids: Vec<&str> = cases::all().iter().map(|c| c.id).collect();
-    let covered = ["W1", "patch", "energy", "W10", "W13", "W1-conv"];
+    let covered = [
+        "W1", "patch", "energy", "W10", "W13", "W1-conv", "W5", "W6", "W7", "W8", "W9", "bonded",
+        "drop",
+    ];
     for id in ids {
         assert!(
             covered.contains(&id),

@@ -76,6 +76,9 @@ pub struct Simulation {
     peak_energy: f64,
     /// Consecutive steps with the balance residual above half of `peak_energy`.
     unbalanced_steps: u32,
+    /// Energies below this are round-off: 1e-12 × Σ M × c_max² (the energy of strains of
+    /// order one is Σ M c²).
+    energy_floor: f64,
     /// Largest P-wave speed of the model's materials (m/s).
     max_wave_speed: f64,
 }
@@ -163,6 +166,13 @@ impl Simulation {
             contact_seconds: 0.0,
             peak_energy: 0.0,
             unbalanced_steps: 0,
+            energy_floor: 1e-12
+                * model.mass.iter().sum::<f64>()
+                * model
+                    .groups
+                    .iter()
+                    .map(|g| g.material.elastic().p_wave_speed().powi(2))
+                    .fold(0.0, f64::max),
             max_wave_speed: model
                 .groups
                 .iter()
@@ -381,9 +391,10 @@ impl Simulation {
         // The balance is O(Δt²) in absolute terms; where the motion itself is only a few
         // steps old (a node just released, all energies at round-off) that can be a large
         // fraction of the energies, so only a residual that stays above half the largest
-        // energy for 10 steps in a row (a growing instability) stops the run.
+        // energy for 10 steps in a row (a growing instability) stops the run, and only once
+        // the energies rise above round-off (`energy_floor`).
         let residual = e.residual();
-        if self.peak_energy > 0.0 && residual.abs() > 0.5 * self.peak_energy {
+        if self.peak_energy > self.energy_floor && residual.abs() > 0.5 * self.peak_energy {
             self.unbalanced_steps += 1;
         } else {
             self.unbalanced_steps = 0;

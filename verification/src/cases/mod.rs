@@ -5,10 +5,17 @@ use dcfm::Result;
 
 use crate::record::CheckRow;
 
+pub mod contact_bonded_monolithic;
+pub mod contact_drop_bounce;
 pub mod convergence_w01;
 pub mod energy_conservation;
 pub mod patch_test;
 pub mod w01_wave_pulses;
+pub mod w05_bar_impact;
+pub mod w06_incline;
+pub mod w07_newmark_block;
+pub mod w08_cohesive_bond;
+pub mod w09_pair_step;
 pub mod w10_plastic_damage;
 pub mod w13_stable_step;
 
@@ -44,6 +51,34 @@ pub fn all() -> Vec<Case> {
         Case {
             id: "W13",
             run: w13_stable_step::run,
+        },
+        Case {
+            id: "W5",
+            run: w05_bar_impact::run,
+        },
+        Case {
+            id: "W6",
+            run: w06_incline::run,
+        },
+        Case {
+            id: "W7",
+            run: w07_newmark_block::run,
+        },
+        Case {
+            id: "W8",
+            run: w08_cohesive_bond::run,
+        },
+        Case {
+            id: "W9",
+            run: w09_pair_step::run,
+        },
+        Case {
+            id: "bonded",
+            run: contact_bonded_monolithic::run,
+        },
+        Case {
+            id: "drop",
+            run: contact_drop_bounce::run,
         },
     ]
 }

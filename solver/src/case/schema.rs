@@ -78,6 +78,21 @@ pub struct OutputSection {
     /// at least this (docs/plastic_damage.md §5).
     #[serde(default = "default_damage_threshold")]
     pub damage_threshold: f64,
+    /// Count the damaged volume per integration point ("point", default) or per element
+    /// from its volume-averaged damage ("element").
+    #[serde(default)]
+    pub damaged_volume: DamagedVolumeMeasure,
+}
+
+/// How the damaged volume of eq. (27) is measured.
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum DamagedVolumeMeasure {
+    /// Volume of the integration points whose damage reaches the threshold.
+    #[default]
+    Point,
+    /// Volume of the elements whose averaged damage reaches the threshold.
+    Element,
 }
 
 fn default_damage_threshold() -> f64 {
@@ -93,6 +108,7 @@ impl Default for OutputSection {
             elements: Vec::new(),
             checkpoint_every: 0,
             damage_threshold: default_damage_threshold(),
+            damaged_volume: DamagedVolumeMeasure::Point,
         }
     }
 }

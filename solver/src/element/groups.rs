@@ -343,10 +343,12 @@ impl ElementGroup {
         )
     }
 
-    /// Damaged volume of eq. (27): the summed volume of the integration points whose
-    /// tensile damage D_t (first value), compressive damage D_c (second) or either of them
-    /// (third) is at least `threshold` (docs/plastic_damage.md §5).
-    pub fn damaged_volume(&self, threshold: f64) -> [f64; 3] {
+    /// Damaged volume of eq. (27), [tension, compression, either]: with `per_element`
+    /// false, the summed volume of the integration points whose D_t (resp. D_c, either) is
+    /// at least `threshold`; with `per_element` true, the summed volume of the elements
+    /// whose volume-averaged D_t (resp. D_c, either) is at least `threshold`
+    /// (docs/plastic_damage.md §5).
+    pub fn damaged_volume(&self, threshold: f64, per_element: bool) -> [f64; 3] {
         let mut v = [0.0; 3];
         if !self.material.has_damage() {
             return v;
@@ -354,7 +356,20 @@ impl ElementGroup {
         let stride = self.states.stride();
         let np = self.integration.points();
         let state = self.states.current();
+        let mut add = |dt: f64, dc: f64, vol: f64| {
+            let (t, c) = (dt >= threshold, dc >= threshold);
+            if t {
+                v[0] += vol;
+            }
+            if c {
+                v[1] += vol;
+            }
+            if t || c {
+                v[2] += vol;
+            }
+        };
         for le in 0..self.len() {
+            let (mut et, mut ec) = (0.0, 0.0);
             for gp in 0..np {
                 let p = le * np + gp;
                 if let Some(d) = self
@@ -362,18 +377,16 @@ impl ElementGroup {
                     .damage_state(&state[p * stride..(p + 1) * stride])
                 {
                     let pv = self.point_volume(le, gp);
-                    let t = d.dt >= threshold;
-                    let c = d.dc >= threshold;
-                    if t {
-                        v[0] += pv;
-                    }
-                    if c {
-                        v[1] += pv;
-                    }
-                    if t || c {
-                        v[2] += pv;
+                    if per_element {
+                        et += d.dt * pv / self.volume[le];
+                        ec += d.dc * pv / self.volume[le];
+                    } else {
+                        add(d.dt, d.dc, pv);
                     }
                 }
+            }
+            if per_element {
+                add(et, ec, self.volume[le]);
             }
         }
         v

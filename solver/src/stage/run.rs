@@ -120,7 +120,8 @@ fn history_row(sim: &Simulation, output: &OutputSection, row: &mut Vec<f64>) {
         row.extend(s);
     }
     for g in sim.model.groups.iter().filter(|g| g.material.has_damage()) {
-        row.extend(g.damaged_volume(output.damage_threshold));
+        let per_element = output.damaged_volume == crate::case::DamagedVolumeMeasure::Element;
+        row.extend(g.damaged_volume(output.damage_threshold, per_element));
     }
     if let Some(c) = &sim.model.contact {
         for (_, a) in c.state_areas() {

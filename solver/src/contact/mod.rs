@@ -28,6 +28,7 @@
 //! See `docs/contact.md` for the equations, the sign conventions and the choices made
 //! where the paper is terse.
 
+mod checkpoint;
 pub mod geom;
 pub mod pair;
 mod setup;

@@ -1,6 +1,6 @@
 //! Checkpoints of a running simulation, so that long runs can be resumed: displacements,
-//! half-step velocities, accelerations, energies and every integration-point state, in a
-//! little-endian binary file written atomically.
+//! half-step velocities, accelerations, energies, every integration-point state and the
+//! state of every contact interface, in a little-endian binary file written atomically.
 
 use std::io::{Read, Write};
 use std::path::Path;
@@ -9,7 +9,7 @@ use crate::error::{DcfmError, Result};
 use crate::output::write_atomic_with;
 use crate::stage::{Energies, Simulation};
 
-const MAGIC: &[u8; 8] = b"DCFMCKP1";
+const MAGIC: &[u8; 8] = b"DCFMCKP2";
 
 fn put_f64s(w: &mut impl Write, xs: &[f64]) -> std::io::Result<()> {
     for x in xs {
@@ -55,6 +55,14 @@ pub fn write_checkpoint(path: &Path, sim: &Simulation) -> Result<()> {
             w.write_all(&(s.len() as u64).to_le_bytes())?;
             put_f64s(w, s)?;
         }
+        let contact = sim
+            .model
+            .contact
+            .as_ref()
+            .map(|c| c.state_values())
+            .unwrap_or_default();
+        w.write_all(&(contact.len() as u64).to_le_bytes())?;
+        put_f64s(w, &contact)?;
         Ok(())
     })
 }
@@ -152,6 +160,23 @@ pub fn read_checkpoint(path: &Path, sim: &mut Simulation) -> Result<()> {
         }
         let values: Vec<f64> = (0..len).map(|_| r.f64()).collect::<Result<_>>()?;
         g.states.restore(&values);
+    }
+    let nc = r.u64()? as usize;
+    let contact: Vec<f64> = (0..nc).map(|_| r.f64()).collect::<Result<_>>()?;
+    match sim.model.contact.as_mut() {
+        Some(c) => c
+            .restore_state(&contact)
+            .map_err(|message| DcfmError::Parse {
+                file: file.clone(),
+                message,
+            })?,
+        None if nc > 0 => {
+            return Err(DcfmError::Parse {
+                file,
+                message: "checkpoint has contact state but the case has no interface".into(),
+            })
+        }
+        None => {}
     }
     sim.step = step;
     sim.time = time;

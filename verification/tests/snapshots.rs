@@ -4,7 +4,8 @@
 
 use dcfm::element::Integration;
 use dcfm_verification::cases::{
-    energy_conservation, patch_test, w01_wave_pulses, w10_plastic_damage,
+    contact_drop_bounce, energy_conservation, patch_test, w01_wave_pulses, w06_incline,
+    w10_plastic_damage,
 };
 use dcfm_verification::models::column::{ColumnSetup, TopEnd, Wave};
 
@@ -63,6 +64,36 @@ fn w10_tension_scalars() {
             ("stress_at_1_over_b_pa", r4(s)),
             ("damage_at_1_over_b", r4(d)),
             ("plastic_dissipation_j_m3", r4(g))
+        ]
+    );
+}
+
+#[test]
+fn w06_incline_slide_scalars() {
+    let m = w06_incline::measure(30.0, 0.5, 0.4, false, 1.0).unwrap();
+    insta::assert_yaml_snapshot!(
+        "w06_slide_30deg_pairs",
+        vec![
+            ("x_m", r4(m.x)),
+            ("v_m_s", r4(m.v)),
+            ("friction_work_per_kg", r4(m.friction_work / m.mass)),
+            ("sliding_pairs", m.sliding_pairs.to_string()),
+        ]
+    );
+}
+
+#[test]
+fn drop_bounce_state_counts() {
+    let m = contact_drop_bounce::measure(1.5).unwrap();
+    insta::assert_yaml_snapshot!(
+        "drop_bounce",
+        vec![
+            ("separations", m.separations.to_string()),
+            ("recontacts", m.recontacts.to_string()),
+            (
+                "final_normal_force_over_weight",
+                format!("{:.4}", m.final_normal_force / (9.81 * m.mass))
+            ),
         ]
     );
 }

@@ -426,9 +426,7 @@ fn damping_force_uniform(
     beta: f64,
     f: &mut [[f64; 3]; 8],
 ) {
-    let s = material.elastic().stress(&g.strain(v)).map(|x| beta * x);
-    let q = g.hourglass_modes(v).map(|r| r.map(|x| beta * x));
-    g.forces(&s, &q, f);
+    g.damping_forces(material.elastic(), v, beta, f);
 }
 
 /// Stiffness-proportional damping force β K0 v of a fully integrated element.

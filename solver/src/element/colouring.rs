@@ -3,7 +3,7 @@
 //! share a node. A block is processed by one thread, its elements in mesh order (so the
 //! displacements it gathers and the forces it scatters stay in cache), and the blocks of a
 //! colour in parallel without races; the sum at every node happens in the same order
-//! whatever the number of threads. Fewer colours than with single elements (4–5 on the
+//! whatever the number of threads. Fewer colours than with single elements (3–4 on the
 //! 20³ and 40³ benchmark cubes instead of 8) means fewer synchronisation points per step.
 //!
 //! If the blocks would need more than 64 colours (a mesh numbered with no locality), the
@@ -11,7 +11,7 @@
 //! which is equally safe: elements of one colour share no node whichever way they are run.
 
 /// Elements per block of [`colour_elements`].
-pub const BLOCK: usize = 128;
+pub const BLOCK: usize = 256;
 
 /// Colour of every element: the colour of its block of [`BLOCK`] elements in mesh order
 /// (falls back to single-element colouring when the blocks need more than 64 colours).

@@ -1,8 +1,9 @@
-//! A candidate fully integrated hex8 kernel, measured against `dcfm::element::hex8_full` by
-//! the `hex8_kernels` bench (issue #2): the same nodal forces from 640 instead of 1600 bytes
-//! of geometry per element.
+//! The prototype of the fully integrated hex8 kernel that `dcfm::element::hex8_full` adopted
+//! (issue #2): the same nodal forces from 640 instead of 1600 bytes of geometry per
+//! element. It stays as an independent implementation, compared with the solver's by a unit
+//! test and by the `hex8_kernels` bench.
 //!
-//! The solver stores ∂N_a/∂x_j at each of the 8 Gauss points (8 × 24 values). Since
+//! The solver stored ∂N_a/∂x_j at each of the 8 Gauss points (8 × 24 values). Since
 //! ∂N_a/∂x_j = Σ_k ∂N_a/∂ξ_k (J⁻¹)_kj and ∂N_a/∂ξ_k at the Gauss points are the same for
 //! every element (a 1.5 KB table that stays in L1), storing J⁻¹ and w·det J per point
 //! (8 × 10 values) is enough:

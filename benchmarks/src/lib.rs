@@ -8,10 +8,11 @@
 //!   the throughput targets of issue #2);
 //! - [`git`], [`timestamp`]: provenance of a record (commit, UTC time);
 //! - [`cputime`]: CPU time of the process, to flag runs starved by other processes;
-//! - [`split_uniform`]: a candidate one-point kernel (Flanagan–Belytschko split form) that
-//!   the kernel bench measures against the solver's, for issue #2;
-//! - [`jinv_full`]: a candidate fully integrated kernel (J⁻¹ per Gauss point, 640 instead
-//!   of 1600 bytes per element), likewise;
+//! - [`split_uniform`]: the prototype of the one-point kernel (Flanagan–Belytschko split
+//!   form) that the solver adopted for issue #2, kept as an independent implementation that
+//!   the kernel bench and a unit test compare with the solver's;
+//! - [`jinv_full`]: likewise for the fully integrated kernel (J⁻¹ per Gauss point, 640
+//!   instead of 1600 bytes per element);
 //! - [`error`]: the runner's error type.
 
 pub mod cputime;

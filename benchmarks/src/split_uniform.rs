@@ -1,7 +1,9 @@
-//! A candidate one-point hex8 kernel, measured against `dcfm::element::hex8_uniform` by the
-//! `hex8_kernels` bench (issue #2): the same nodal forces from less data and fewer flops.
+//! The prototype of the one-point hex8 kernel that `dcfm::element::hex8_uniform` adopted
+//! (issue #2): the same nodal forces from less data and fewer flops. It stays as an
+//! independent implementation, compared with the solver's by a unit test and by the
+//! `hex8_kernels` bench.
 //!
-//! The solver stores the hourglass shape vectors γ_αa = Γ_αa − Σ_j h_αj b_aj (32 values)
+//! The solver stored the hourglass shape vectors γ_αa = Γ_αa − Σ_j h_αj b_aj (32 values)
 //! with h_αj = Σ_b Γ_αb x_bj. Written out (Flanagan & Belytschko 1981, eqs. 14–16),
 //!
 //! ```text

@@ -4,6 +4,7 @@
 
 use rayon::prelude::*;
 
+use crate::element::colouring::BLOCK;
 use crate::element::hex8_full::{self, FullGeometry};
 use crate::element::hex8_uniform::{self, UniformGeometry};
 use crate::element::stable_step::characteristic_length;
@@ -44,6 +45,12 @@ pub struct ElementGroup {
     pub volume: Vec<f64>,
     /// Element ranges of each colour.
     pub colour_ranges: Vec<std::ops::Range<usize>>,
+    /// Runs of elements of one colour and one colouring block (`colouring::BLOCK`
+    /// consecutive global elements), in the group's order: each is processed serially by
+    /// one thread, the runs of a colour in parallel.
+    blocks: Vec<std::ops::Range<usize>>,
+    /// Range of `blocks` of each colour.
+    colour_blocks: Vec<std::ops::Range<usize>>,
     /// Integration-point state (`integration.points()` points per element).
     pub states: PointStates,
 }
@@ -98,6 +105,21 @@ impl ElementGroup {
             *range = start..start + len;
             start += len;
         }
+        let mut blocks = Vec::new();
+        let mut colour_blocks = Vec::with_capacity(n_colours);
+        for range in &colour_ranges {
+            let first = blocks.len();
+            let mut start = range.start;
+            for le in range.clone() {
+                if le + 1 == range.end
+                    || elements[le + 1] as usize / BLOCK != elements[start] as usize / BLOCK
+                {
+                    blocks.push(start..le + 1);
+                    start = le + 1;
+                }
+            }
+            colour_blocks.push(first..blocks.len());
+        }
         let conn: Vec<[u32; 8]> = elements
             .iter()
             .map(|&e| mesh.elements[e as usize])
@@ -147,6 +169,8 @@ impl ElementGroup {
             char_length,
             volume,
             colour_ranges,
+            blocks,
+            colour_blocks,
             states,
         })
     }
@@ -176,7 +200,8 @@ impl ElementGroup {
 
     /// Add the internal forces of the elements of colour `c` into `f_int` (and the
     /// stiffness-proportional damping forces into `f_damp` when β > 0). Elements of one
-    /// colour share no node, so the parallel adds never touch the same node.
+    /// colour share no node, so the parallel adds never touch the same node; each run of
+    /// one colouring block is added by one thread in the group's order.
     pub fn add_colour_forces(
         &mut self,
         c: usize,
@@ -186,12 +211,13 @@ impl ElementGroup {
         f_int: &mut [[f64; 3]],
         f_damp: &mut [[f64; 3]],
     ) {
-        let Some(range) = self.colour_ranges.get(c).cloned() else {
+        let Some(block_range) = self.colour_blocks.get(c).cloned() else {
             return;
         };
-        if range.is_empty() {
+        if block_range.is_empty() {
             return;
         }
+        let blocks = &self.blocks[block_range];
         let stride = self.states.stride() * self.integration.points();
         let (old, new) = self.states.split();
         let new_ptr = SharedMut(new.as_mut_ptr());
@@ -205,7 +231,7 @@ impl ElementGroup {
         let geometry = &self.geometry;
         let beta = settings.beta;
         let dt = settings.dt;
-        range.into_par_iter().with_min_len(512).for_each(|le| {
+        let element = |le: usize| {
             let nodes = &conn[le];
             let ue: [[f64; 3]; 8] = std::array::from_fn(|a| u[nodes[a] as usize]);
             let ve: [[f64; 3]; 8] = if beta > 0.0 {
@@ -241,7 +267,8 @@ impl ElementGroup {
             for a in 0..8 {
                 let n = nodes[a] as usize;
                 debug_assert!(n < n_nodes);
-                // SAFETY: no other element of this colour has node n (colouring).
+                // SAFETY: no element of another run of this colour has node n (block
+                // colouring), and the elements of this run are added serially by this thread.
                 unsafe {
                     let p = &mut *f_ptr.at(n);
                     p[0] += fe[a][0];
@@ -255,7 +282,10 @@ impl ElementGroup {
                     }
                 }
             }
-        });
+        };
+        blocks
+            .par_iter()
+            .for_each(|run| run.clone().for_each(element));
     }
 
     /// Volume-averaged strain and stress of the group's element `le` from displacements
@@ -439,9 +469,7 @@ fn damping_force_uniform(
     beta: f64,
     f: &mut [[f64; 3]; 8],
 ) {
-    let s = material.elastic().stress(&g.strain(v)).map(|x| beta * x);
-    let q = g.hourglass_modes(v).map(|r| r.map(|x| beta * x));
-    g.forces(&s, &q, f);
+    g.damping_forces(material.elastic(), v, beta, f);
 }
 
 /// Stiffness-proportional damping force β K0 v of a fully integrated element.

@@ -1,27 +1,98 @@
-//! Fully integrated hex8: 2×2×2 Gauss points, B matrices precomputed per point.
+//! Fully integrated hex8: 2×2×2 Gauss points.
+//!
+//! Per element and Gauss point only J⁻¹ and w·det J are stored (640 bytes per element
+//! instead of 1600 for ∂N_a/∂x at every point, issue #2): ∂N_a/∂x_j = Σ_k ∂N_a/∂ξ_k (J⁻¹)_kj,
+//! and ∂N_a/∂ξ_k at the Gauss points is one table shared by every element
+//! ([`NATURAL_DERIVATIVES`], 1.5 KB, stays in L1). Per point,
+//!
+//! ```text
+//! H_ik = Σ_a u_ai ∂N_a/∂ξ_k,   G = H J⁻¹ (displacement gradient),   ε = sym G
+//! P_ik = w det J Σ_j σ_ij (J⁻¹)_kj,   f_ai += Σ_k ∂N_a/∂ξ_k P_ik
+//! ```
+//!
+//! 54 more multiply-adds per point than with stored ∂N/∂x, for 60 % less memory traffic
+//! (the kernel is memory-bound when the geometry streams from memory).
 
-use crate::element::hex8_shape::{cartesian_derivatives, gauss_points};
+use crate::element::hex8_shape::{gauss_points, jacobian, shape_derivatives, NODE_XI};
 use crate::material::{Material, PointContext, Voigt};
 
-/// Precomputed geometry of one fully integrated element (1600 bytes): ∂N_a/∂x_i and
-/// w·det J at each Gauss point.
+/// 1/√3, the 2×2×2 Gauss abscissa (equal to the one of `hex8_shape::gauss_points`, tested).
+const GAUSS: f64 = 0.5773502691896258;
+
+/// ∂N_a/∂ξ_k at the 8 Gauss points, `[point][node][k]` (equal to
+/// `shape_derivatives(&gauss_points()[g])`, tested).
+pub const NATURAL_DERIVATIVES: [[[f64; 3]; 8]; 8] = natural_derivatives();
+
+const fn natural_derivatives() -> [[[f64; 3]; 8]; 8] {
+    let mut d = [[[0.0; 3]; 8]; 8];
+    let mut g = 0;
+    while g < 8 {
+        let xi = [
+            NODE_XI[g][0] * GAUSS,
+            NODE_XI[g][1] * GAUSS,
+            NODE_XI[g][2] * GAUSS,
+        ];
+        let mut a = 0;
+        while a < 8 {
+            let n = NODE_XI[a];
+            let (a0, a1, a2) = (1.0 + n[0] * xi[0], 1.0 + n[1] * xi[1], 1.0 + n[2] * xi[2]);
+            d[g][a] = [
+                0.125 * n[0] * a1 * a2,
+                0.125 * n[1] * a0 * a2,
+                0.125 * n[2] * a0 * a1,
+            ];
+            a += 1;
+        }
+        g += 1;
+    }
+    d
+}
+
+/// Precomputed geometry of one fully integrated element (640 bytes): J⁻¹ and w·det J at
+/// each Gauss point.
 #[derive(Clone, Copy, Debug)]
 pub struct FullGeometry {
-    pub d: [[[f64; 3]; 8]; 8],
+    /// (J⁻¹)_kj at each point, J_ik = ∂x_i/∂ξ_k.
+    pub jinv: [[[f64; 3]; 3]; 8],
+    /// w det J at each point (Gauss weights are 1).
     pub wdet: [f64; 8],
+}
+
+/// Inverse of a 3×3 matrix with determinant `det` (cofactors).
+fn inverse(j: &[[f64; 3]; 3], det: f64) -> [[f64; 3]; 3] {
+    [
+        [
+            (j[1][1] * j[2][2] - j[1][2] * j[2][1]) / det,
+            (j[0][2] * j[2][1] - j[0][1] * j[2][2]) / det,
+            (j[0][1] * j[1][2] - j[0][2] * j[1][1]) / det,
+        ],
+        [
+            (j[1][2] * j[2][0] - j[1][0] * j[2][2]) / det,
+            (j[0][0] * j[2][2] - j[0][2] * j[2][0]) / det,
+            (j[0][2] * j[1][0] - j[0][0] * j[1][2]) / det,
+        ],
+        [
+            (j[1][0] * j[2][1] - j[1][1] * j[2][0]) / det,
+            (j[0][1] * j[2][0] - j[0][0] * j[2][1]) / det,
+            (j[0][0] * j[1][1] - j[0][1] * j[1][0]) / det,
+        ],
+    ]
 }
 
 impl FullGeometry {
     /// Geometry from nodal coordinates; `None` if det J ≤ 0 at a Gauss point.
     pub fn new(x: &[[f64; 3]; 8]) -> Option<Self> {
-        let mut d = [[[0.0; 3]; 8]; 8];
+        let mut jinv = [[[0.0; 3]; 3]; 8];
         let mut wdet = [0.0; 8];
         for (g, p) in gauss_points().iter().enumerate() {
-            let (dg, det) = cartesian_derivatives(x, p)?;
-            d[g] = dg;
+            let (j, det) = jacobian(x, &shape_derivatives(p));
+            if det.is_nan() || det <= 0.0 {
+                return None;
+            }
+            jinv[g] = inverse(&j, det);
             wdet[g] = det;
         }
-        Some(Self { d, wdet })
+        Some(Self { jinv, wdet })
     }
 
     /// Element volume.
@@ -29,34 +100,55 @@ impl FullGeometry {
         self.wdet.iter().sum()
     }
 
+    /// Displacement gradient G_ij = ∂u_i/∂x_j at Gauss point `g`.
+    #[inline(always)]
+    pub fn gradient(&self, g: usize, u: &[[f64; 3]; 8]) -> [[f64; 3]; 3] {
+        let d = &NATURAL_DERIVATIVES[g];
+        let ji = &self.jinv[g];
+        let mut h = [[0.0; 3]; 3];
+        for a in 0..8 {
+            for i in 0..3 {
+                for k in 0..3 {
+                    h[i][k] += u[a][i] * d[a][k];
+                }
+            }
+        }
+        std::array::from_fn(|i| {
+            std::array::from_fn(|j| h[i][0] * ji[0][j] + h[i][1] * ji[1][j] + h[i][2] * ji[2][j])
+        })
+    }
+
     /// Strain at Gauss point `g`.
     #[inline(always)]
     pub fn strain(&self, g: usize, u: &[[f64; 3]; 8]) -> Voigt {
-        let b = &self.d[g];
-        let mut e = [0.0; 6];
-        for a in 0..8 {
-            let (bx, by, bz) = (b[a][0], b[a][1], b[a][2]);
-            let (ux, uy, uz) = (u[a][0], u[a][1], u[a][2]);
-            e[0] += bx * ux;
-            e[1] += by * uy;
-            e[2] += bz * uz;
-            e[3] += by * ux + bx * uy;
-            e[4] += bz * uy + by * uz;
-            e[5] += bx * uz + bz * ux;
-        }
-        e
+        let gr = self.gradient(g, u);
+        [
+            gr[0][0],
+            gr[1][1],
+            gr[2][2],
+            gr[0][1] + gr[1][0],
+            gr[1][2] + gr[2][1],
+            gr[2][0] + gr[0][2],
+        ]
     }
 
     /// f_a += w det J · B_aᵀ σ at Gauss point `g`.
     #[inline(always)]
     pub fn add_forces(&self, g: usize, s: &Voigt, f: &mut [[f64; 3]; 8]) {
-        let b = &self.d[g];
+        let d = &NATURAL_DERIVATIVES[g];
+        let ji = &self.jinv[g];
         let w = self.wdet[g];
+        let sig = [[s[0], s[3], s[5]], [s[3], s[1], s[4]], [s[5], s[4], s[2]]];
+        let mut p = [[0.0; 3]; 3];
+        for i in 0..3 {
+            for k in 0..3 {
+                p[i][k] = w * (sig[i][0] * ji[k][0] + sig[i][1] * ji[k][1] + sig[i][2] * ji[k][2]);
+            }
+        }
         for a in 0..8 {
-            let (bx, by, bz) = (b[a][0] * w, b[a][1] * w, b[a][2] * w);
-            f[a][0] += bx * s[0] + by * s[3] + bz * s[5];
-            f[a][1] += bx * s[3] + by * s[1] + bz * s[4];
-            f[a][2] += bx * s[5] + by * s[4] + bz * s[2];
+            for i in 0..3 {
+                f[a][i] += d[a][0] * p[i][0] + d[a][1] * p[i][1] + d[a][2] * p[i][2];
+            }
         }
     }
 }
@@ -87,4 +179,80 @@ pub fn internal_force(
     }
     let vol = geo.volume();
     mean.map(|m| m / vol)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::element::hex8_shape::cartesian_derivatives;
+    use crate::material::Elastic;
+
+    fn distorted() -> [[f64; 3]; 8] {
+        [
+            [0.0, 0.0, 0.0],
+            [1.1, 0.05, -0.02],
+            [1.2, 0.9, 0.1],
+            [-0.1, 1.05, 0.0],
+            [0.05, -0.1, 1.0],
+            [1.0, 0.1, 1.2],
+            [1.1, 1.1, 0.95],
+            [0.0, 0.9, 1.1],
+        ]
+    }
+
+    #[test]
+    fn table_is_the_shape_derivatives_at_the_gauss_points_and_size_is_640_bytes() {
+        assert_eq!(GAUSS, 1.0 / 3f64.sqrt());
+        for (g, p) in gauss_points().iter().enumerate() {
+            assert_eq!(NATURAL_DERIVATIVES[g], shape_derivatives(p));
+        }
+        assert_eq!(std::mem::size_of::<FullGeometry>(), 640);
+    }
+
+    /// Same forces as with ∂N_a/∂x stored per point (the former form), to round-off.
+    #[test]
+    fn same_forces_as_with_cartesian_derivatives() {
+        let x = distorted();
+        let geo = FullGeometry::new(&x).unwrap();
+        let mat = Material::Elastic(Elastic::new("rock", 20e9, 0.25, 2700.0).unwrap());
+        let u: [[f64; 3]; 8] = std::array::from_fn(|a| {
+            let t = a as f64;
+            [
+                1e-3 * (t * 0.7).sin(),
+                -2e-3 * (t * 1.3).cos(),
+                5e-4 * t * t,
+            ]
+        });
+        let ctx = PointContext {
+            char_length: 1.0,
+            dt: 1e-4,
+        };
+        let mut f = [[0.0; 3]; 8];
+        internal_force(&geo, &mat, &u, &[], &mut [], &ctx, &mut f);
+        let mut r = [[0.0; 3]; 8];
+        for (g, p) in gauss_points().iter().enumerate() {
+            let (d, det) = cartesian_derivatives(&x, p).unwrap();
+            assert!((det - geo.wdet[g]).abs() <= 1e-14 * det);
+            let mut e = [0.0; 6];
+            for a in 0..8 {
+                e[0] += d[a][0] * u[a][0];
+                e[1] += d[a][1] * u[a][1];
+                e[2] += d[a][2] * u[a][2];
+                e[3] += d[a][1] * u[a][0] + d[a][0] * u[a][1];
+                e[4] += d[a][2] * u[a][1] + d[a][1] * u[a][2];
+                e[5] += d[a][0] * u[a][2] + d[a][2] * u[a][0];
+            }
+            let s = mat.elastic().stress(&e);
+            for a in 0..8 {
+                let b = d[a].map(|v| v * det);
+                r[a][0] += b[0] * s[0] + b[1] * s[3] + b[2] * s[5];
+                r[a][1] += b[0] * s[3] + b[1] * s[1] + b[2] * s[4];
+                r[a][2] += b[0] * s[5] + b[1] * s[4] + b[2] * s[2];
+            }
+        }
+        let scale = r.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+        for (a, b) in f.iter().flatten().zip(r.iter().flatten()) {
+            assert!((a - b).abs() <= 1e-12 * scale, "{a} vs {b}");
+        }
+    }
 }

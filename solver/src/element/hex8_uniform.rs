@@ -6,9 +6,29 @@
 //! shape vectors γ_αa = Γ_αa − (Σ_b Γ_αb x_bj) b_aj are orthogonal to every linear field;
 //! the stiffness-type hourglass force is f_ai = κ Σ_α γ_αa q_αi, q_αi = Σ_a γ_αa u_ai, with
 //! κ = ε_hg (λ+2μ) V (b_ai b_ai) / 8 from the initial elastic moduli.
+//!
+//! The kernel uses the split form of γ (issue #2): with h_αj = Σ_b Γ_αb x_bj and the mean
+//! displacement gradient G_ij = Σ_a u_ai b_aj,
+//!
+//! ```text
+//! q_αi = (Γu)_αi − Σ_j h_αj G_ij
+//! f_ai = Σ_j b_aj P_ij + Σ_α Γ_αa (κ q_αi),   P_ij = V σ_ij − Σ_α h_αj κ q_αi
+//! ```
+//!
+//! so an element stores b, h, V and κ (304 bytes instead of 464 with γ), G is computed once
+//! for the strain and the hourglass modes, and Γ (entries ±1) costs only additions.
 
 use crate::element::hex8_shape::{cartesian_derivatives, gauss_points, NODE_XI};
 use crate::material::{Elastic, Material, PointContext, Voigt};
+
+/// Hourglass base vectors Γ_α (α = ηζ, ζξ, ξη, ξηζ) at the nodes, as a constant
+/// (equal to [`hourglass_base`], tested).
+pub const GAMMA: [[f64; 8]; 4] = [
+    [1.0, 1.0, -1.0, -1.0, -1.0, -1.0, 1.0, 1.0],
+    [1.0, -1.0, -1.0, 1.0, -1.0, 1.0, 1.0, -1.0],
+    [1.0, -1.0, 1.0, -1.0, 1.0, -1.0, 1.0, -1.0],
+    [-1.0, 1.0, -1.0, 1.0, 1.0, -1.0, 1.0, -1.0],
+];
 
 /// Hourglass base vectors Γ_α (α = ηζ, ζξ, ξη, ξηζ) at the nodes.
 pub fn hourglass_base() -> [[f64; 8]; 4] {
@@ -22,18 +42,21 @@ pub fn hourglass_base() -> [[f64; 8]; 4] {
     g
 }
 
-/// Precomputed geometry of one one-point element (464 bytes).
+/// Precomputed geometry of one one-point element (304 bytes).
 #[derive(Clone, Copy, Debug, Default)]
 pub struct UniformGeometry {
     /// Mean gradient b_ai (1/m).
     pub b: [[f64; 3]; 8],
+    /// h_αj = Σ_b Γ_αb x_bj (m): the hourglass shape vectors are γ_αa = Γ_αa − h_αj b_aj.
+    pub h: [[f64; 3]; 4],
     /// Volume V (m³).
     pub volume: f64,
-    /// Hourglass shape vectors γ_αa.
-    pub gamma: [[f64; 8]; 4],
     /// Hourglass stiffness κ (N/m).
     pub kappa: f64,
 }
+
+/// Mean displacement gradient G_ij = Σ_a u_ai b_aj and Γu, computed together.
+pub type GradientAndModes = ([[f64; 3]; 3], [[f64; 3]; 4]);
 
 impl UniformGeometry {
     /// Geometry of an element with nodal coordinates `x`; `None` if det J ≤ 0 somewhere.
@@ -50,79 +73,151 @@ impl UniformGeometry {
             }
         }
         let b = bv.map(|r| r.map(|v| v / volume));
-        let base = hourglass_base();
-        let mut gamma = [[0.0; 8]; 4];
-        for al in 0..4 {
-            let mut gx = [0.0; 3];
-            for a in 0..8 {
+        let mut h = [[0.0; 3]; 4];
+        for (al, row) in h.iter_mut().enumerate() {
+            for (a, xa) in x.iter().enumerate() {
                 for j in 0..3 {
-                    gx[j] += base[al][a] * x[a][j];
+                    row[j] += GAMMA[al][a] * xa[j];
                 }
-            }
-            for a in 0..8 {
-                gamma[al][a] = base[al][a] - (gx[0] * b[a][0] + gx[1] * b[a][1] + gx[2] * b[a][2]);
             }
         }
         let bb: f64 = b.iter().flatten().map(|v| v * v).sum();
         let kappa = hourglass * elastic.p_modulus() * volume * bb / 8.0;
         Some(Self {
             b,
+            h,
             volume,
-            gamma,
             kappa,
+        })
+    }
+
+    /// Hourglass shape vectors γ_αa = Γ_αa − Σ_j h_αj b_aj (not stored; for checks).
+    pub fn gamma(&self) -> [[f64; 8]; 4] {
+        std::array::from_fn(|al| {
+            std::array::from_fn(|a| {
+                GAMMA[al][a]
+                    - (self.h[al][0] * self.b[a][0]
+                        + self.h[al][1] * self.b[a][1]
+                        + self.h[al][2] * self.b[a][2])
+            })
+        })
+    }
+
+    /// Mean displacement gradient G_ij = Σ_a u_ai b_aj and (Γu)_αi.
+    #[inline(always)]
+    pub fn gradient_and_modes(&self, u: &[[f64; 3]; 8]) -> GradientAndModes {
+        let mut g = [[0.0; 3]; 3];
+        let mut gu = [[0.0; 3]; 4];
+        for a in 0..8 {
+            for i in 0..3 {
+                for j in 0..3 {
+                    g[i][j] += u[a][i] * self.b[a][j];
+                }
+                for al in 0..4 {
+                    gu[al][i] += GAMMA[al][a] * u[a][i];
+                }
+            }
+        }
+        (g, gu)
+    }
+
+    /// Hourglass modes q_αi = (Γu)_αi − Σ_j h_αj G_ij from G and Γu.
+    #[inline(always)]
+    fn modes_from(&self, g: &[[f64; 3]; 3], gu: &[[f64; 3]; 4]) -> [[f64; 3]; 4] {
+        std::array::from_fn(|al| {
+            std::array::from_fn(|i| {
+                gu[al][i]
+                    - (self.h[al][0] * g[i][0] + self.h[al][1] * g[i][1] + self.h[al][2] * g[i][2])
+            })
         })
     }
 
     /// Strain ε = Σ_a B_a u_a (Voigt, engineering shear).
     #[inline(always)]
     pub fn strain(&self, u: &[[f64; 3]; 8]) -> Voigt {
-        let mut e = [0.0; 6];
+        let mut g = [[0.0; 3]; 3];
         for a in 0..8 {
-            let (bx, by, bz) = (self.b[a][0], self.b[a][1], self.b[a][2]);
-            let (ux, uy, uz) = (u[a][0], u[a][1], u[a][2]);
-            e[0] += bx * ux;
-            e[1] += by * uy;
-            e[2] += bz * uz;
-            e[3] += by * ux + bx * uy;
-            e[4] += bz * uy + by * uz;
-            e[5] += bx * uz + bz * ux;
-        }
-        e
-    }
-
-    /// Hourglass generalised displacements q_αi.
-    #[inline(always)]
-    pub fn hourglass_modes(&self, u: &[[f64; 3]; 8]) -> [[f64; 3]; 4] {
-        let mut q = [[0.0; 3]; 4];
-        for al in 0..4 {
-            for a in 0..8 {
-                let g = self.gamma[al][a];
-                q[al][0] += g * u[a][0];
-                q[al][1] += g * u[a][1];
-                q[al][2] += g * u[a][2];
+            for i in 0..3 {
+                for j in 0..3 {
+                    g[i][j] += u[a][i] * self.b[a][j];
+                }
             }
         }
-        q
+        strain_of(&g)
+    }
+
+    /// Hourglass generalised displacements q_αi = Σ_a γ_αa u_ai.
+    #[inline(always)]
+    pub fn hourglass_modes(&self, u: &[[f64; 3]; 8]) -> [[f64; 3]; 4] {
+        let (g, gu) = self.gradient_and_modes(u);
+        self.modes_from(&g, &gu)
     }
 
     /// Nodal forces V Bᵀσ + κ Σ_α γ_α q_α, written into `f`.
     #[inline(always)]
     pub fn forces(&self, s: &Voigt, q: &[[f64; 3]; 4], f: &mut [[f64; 3]; 8]) {
+        let kq = q.map(|r| r.map(|x| self.kappa * x));
+        self.forces_kq(s, &kq, f);
+    }
+
+    /// Nodal forces from σ and κq: f_ai = Σ_j b_aj P_ij + Σ_α Γ_αa (κq)_αi.
+    #[inline(always)]
+    fn forces_kq(&self, s: &Voigt, kq: &[[f64; 3]; 4], f: &mut [[f64; 3]; 8]) {
         let v = self.volume;
-        for a in 0..8 {
-            let (bx, by, bz) = (self.b[a][0] * v, self.b[a][1] * v, self.b[a][2] * v);
-            let mut fx = bx * s[0] + by * s[3] + bz * s[5];
-            let mut fy = bx * s[3] + by * s[1] + bz * s[4];
-            let mut fz = bx * s[5] + by * s[4] + bz * s[2];
-            for al in 0..4 {
-                let g = self.kappa * self.gamma[al][a];
-                fx += g * q[al][0];
-                fy += g * q[al][1];
-                fz += g * q[al][2];
+        let sig = [[s[0], s[3], s[5]], [s[3], s[1], s[4]], [s[5], s[4], s[2]]];
+        let mut p = [[0.0; 3]; 3];
+        for i in 0..3 {
+            for j in 0..3 {
+                p[i][j] = v * sig[i][j]
+                    - (self.h[0][j] * kq[0][i]
+                        + self.h[1][j] * kq[1][i]
+                        + self.h[2][j] * kq[2][i]
+                        + self.h[3][j] * kq[3][i]);
             }
-            f[a] = [fx, fy, fz];
+        }
+        for a in 0..8 {
+            for i in 0..3 {
+                f[a][i] = self.b[a][0] * p[i][0]
+                    + self.b[a][1] * p[i][1]
+                    + self.b[a][2] * p[i][2]
+                    + GAMMA[0][a] * kq[0][i]
+                    + GAMMA[1][a] * kq[1][i]
+                    + GAMMA[2][a] * kq[2][i]
+                    + GAMMA[3][a] * kq[3][i];
+            }
         }
     }
+
+    /// Stiffness-proportional damping force β K0 v (initial elastic stiffness, hourglass
+    /// included), written into `f`.
+    #[inline(always)]
+    pub fn damping_forces(
+        &self,
+        elastic: &Elastic,
+        v: &[[f64; 3]; 8],
+        beta: f64,
+        f: &mut [[f64; 3]; 8],
+    ) {
+        let (g, gu) = self.gradient_and_modes(v);
+        let s = elastic.stress(&strain_of(&g)).map(|x| beta * x);
+        let kq = self
+            .modes_from(&g, &gu)
+            .map(|r| r.map(|x| beta * self.kappa * x));
+        self.forces_kq(&s, &kq, f);
+    }
+}
+
+/// Voigt strain (engineering shear) of a displacement gradient.
+#[inline(always)]
+fn strain_of(g: &[[f64; 3]; 3]) -> Voigt {
+    [
+        g[0][0],
+        g[1][1],
+        g[2][2],
+        g[0][1] + g[1][0],
+        g[1][2] + g[2][1],
+        g[2][0] + g[0][2],
+    ]
 }
 
 /// Internal force of one one-point element (the K U term of eq. 1 for a nonlinear
@@ -138,10 +233,10 @@ pub fn internal_force(
     ctx: &PointContext,
     f: &mut [[f64; 3]; 8],
 ) -> Voigt {
-    let eps = geo.strain(u);
-    let sigma = material.update(&eps, old, new, ctx);
-    let q = geo.hourglass_modes(u);
-    geo.forces(&sigma, &q, f);
+    let (g, gu) = geo.gradient_and_modes(u);
+    let sigma = material.update(&strain_of(&g), old, new, ctx);
+    let kq = geo.modes_from(&g, &gu).map(|r| r.map(|x| geo.kappa * x));
+    geo.forces_kq(&sigma, &kq, f);
     sigma
 }
 
@@ -193,6 +288,65 @@ mod tests {
             for v in row {
                 assert!(v.abs() < 1e-15);
             }
+        }
+    }
+
+    #[test]
+    fn gamma_constant_is_the_base_and_size_is_304_bytes() {
+        assert_eq!(GAMMA, hourglass_base());
+        assert_eq!(std::mem::size_of::<UniformGeometry>(), 304);
+    }
+
+    /// The split form gives the forces of the γ form V Bᵀσ + κ Σ_α γ_α (γ_α·u) to round-off.
+    #[test]
+    fn split_form_matches_gamma_form() {
+        let x = distorted();
+        let el = Elastic::new("m", 20e9, 0.25, 2700.0).unwrap();
+        let mat = Material::Elastic(el);
+        let g = UniformGeometry::new(&x, &el, 0.1).unwrap();
+        let gamma = g.gamma();
+        let u: [[f64; 3]; 8] = std::array::from_fn(|a| {
+            let t = a as f64;
+            [
+                1e-3 * (t * 0.7).sin(),
+                -2e-3 * (t * 1.3).cos(),
+                5e-4 * t * t,
+            ]
+        });
+        let ctx = PointContext {
+            char_length: 1.0,
+            dt: 1e-4,
+        };
+        let mut f = [[0.0; 3]; 8];
+        let s = internal_force(&g, &mat, &u, &[], &mut [], &ctx, &mut f);
+        let mut q = [[0.0; 3]; 4];
+        for al in 0..4 {
+            for a in 0..8 {
+                for i in 0..3 {
+                    q[al][i] += gamma[al][a] * u[a][i];
+                }
+            }
+        }
+        let scale = f.iter().flatten().fold(0.0f64, |m, v| m.max(v.abs()));
+        for a in 0..8 {
+            let b = g.b[a].map(|v| v * g.volume);
+            let mut r = [
+                b[0] * s[0] + b[1] * s[3] + b[2] * s[5],
+                b[0] * s[3] + b[1] * s[1] + b[2] * s[4],
+                b[0] * s[5] + b[1] * s[4] + b[2] * s[2],
+            ];
+            for al in 0..4 {
+                for i in 0..3 {
+                    r[i] += g.kappa * gamma[al][a] * q[al][i];
+                }
+            }
+            for i in 0..3 {
+                assert!((f[a][i] - r[i]).abs() <= 1e-12 * scale, "{a},{i}");
+            }
+        }
+        let qs = g.hourglass_modes(&u);
+        for (a, b) in qs.iter().flatten().zip(q.iter().flatten()) {
+            assert!((a - b).abs() <= 1e-15, "{a} vs {b}");
         }
     }
 }

@@ -276,6 +276,7 @@ impl Simulation {
             alpha,
             gravity,
             mass: &self.model.mass,
+            inv_mass: &self.model.inv_mass,
             constrained: &self.model.constraints.constrained,
             fixed: &self.model.constraints.fixed,
             prescribed: &self.model.constraints.prescribed,
@@ -290,17 +291,26 @@ impl Simulation {
         self.u_next
             .par_chunks_mut(NODE_CHUNK)
             .zip(self.v_next.par_chunks_mut(NODE_CHUNK))
+            .zip(self.a.par_chunks_mut(NODE_CHUNK))
             .zip(self.chunks.par_iter_mut())
             .enumerate()
-            .for_each(|(ci, ((un, vn), res))| {
+            .for_each(|(ci, (((un, vn), an), res))| {
                 let mut out = ChunkResult::default();
-                for (k, (ui, vi)) in un.iter_mut().zip(vn.iter_mut()).enumerate() {
+                for (k, ((ui, vi), ai)) in un.iter_mut().zip(vn.iter_mut()).zip(an).enumerate() {
                     let i = ci * NODE_CHUNK + k;
-                    ctx.predict(i, ui, vi);
-                    let p = ctx.energy_parts(i, vi, &[0.0; 3]);
-                    for (s, x) in out.parts.iter_mut().zip(p) {
-                        *s += x;
+                    if ctx.constrained[i] == 0 {
+                        ctx.predict_free(i, ui, vi, &mut out.parts);
+                    } else {
+                        ctx.predict(i, ui, vi);
+                        let p = ctx.energy_parts(i, vi, &[0.0; 3]);
+                        for (s, x) in out.parts.iter_mut().zip(p) {
+                            *s += x;
+                        }
                     }
+                    // Acceleration (V^{n+½} − V^{n−½})/Δt of the uncorrected motion;
+                    // recomputed at the contact nodes after the correction.
+                    let vo = &ctx.v[i];
+                    *ai = std::array::from_fn(|d| (vi[d] - vo[d]) / dt);
                     let vm = vi[0].abs().max(vi[1].abs()).max(vi[2].abs());
                     if !vm.is_finite() || !ui.iter().all(|x| x.is_finite()) {
                         if !out.nonfinite {
@@ -408,11 +418,11 @@ impl Simulation {
                 ),
             ));
         }
-        // Commit.
-        for (ai, (vn, vo)) in self.a.iter_mut().zip(self.v_next.iter().zip(&self.v)) {
-            for d in 0..3 {
-                ai[d] = (vn[d] - vo[d]) / dt;
-            }
+        // Commit (the accelerations of the other nodes were set in the node pass).
+        for &i in &self.contact_nodes {
+            let i = i as usize;
+            let (vn, vo) = (&self.v_next[i], &self.v[i]);
+            self.a[i] = std::array::from_fn(|d| (vn[d] - vo[d]) / dt);
         }
         std::mem::swap(&mut self.u, &mut self.u_next);
         std::mem::swap(&mut self.v, &mut self.v_next);
@@ -489,6 +499,7 @@ struct NodeContext<'a> {
     alpha: f64,
     gravity: [f64; 3],
     mass: &'a [f64],
+    inv_mass: &'a [f64],
     constrained: &'a [u8],
     fixed: &'a [u8],
     prescribed: &'a [crate::boundary::Prescribed],
@@ -529,6 +540,51 @@ impl NodeContext<'_> {
             v_next[d] = vd;
             u_next[d] = self.u[i][d] + self.dt * vd;
         }
+    }
+
+    /// Predictor and energy parts of a node with no constrained DOF and no contact force
+    /// ([`NodeContext::predict`] and [`NodeContext::energy_parts`] without the branches
+    /// and the reaction, with the inverse mass), energy parts added to `parts`.
+    #[inline(always)]
+    fn predict_free(
+        &self,
+        i: usize,
+        u_next: &mut [f64; 3],
+        v_next: &mut [f64; 3],
+        parts: &mut EnergyParts,
+    ) {
+        let m = self.mass[i];
+        let w = self.inv_mass[i];
+        let (u, v) = (&self.u[i], &self.v[i]);
+        let (fi, fd, fe) = (&self.f_int[i], &self.f_damp[i], &self.f_ext[i]);
+        let mut kin = 0.0;
+        let mut before = [0.0; 3];
+        let mut after = [0.0; 3];
+        for d in 0..3 {
+            let ext = fe[d] + m * self.gravity[d];
+            let damp = fd[d] + self.alpha * m * v[d];
+            let force = ext - fi[d] - fd[d] - self.alpha * m * v[d];
+            let vd = v[d] + self.dt * force * w;
+            v_next[d] = vd;
+            u_next[d] = u[d] + self.dt * vd;
+            let vn = 0.5 * (v[d] + vd);
+            kin += 0.5 * m * vn * vn;
+            let b = 0.5 * self.dt * v[d];
+            let a = 0.5 * self.dt * vd;
+            before[0] += fi[d] * b;
+            before[1] += damp * b;
+            before[2] += ext * b;
+            after[0] += fi[d] * a;
+            after[1] += damp * a;
+            after[2] += ext * a;
+        }
+        parts[0] += kin;
+        parts[1] += before[0];
+        parts[2] += before[1];
+        parts[4] += before[2];
+        parts[6] += after[0];
+        parts[7] += after[1];
+        parts[9] += after[2];
     }
 
     /// Energy parts of node i for the motion V^{n−½} → `v_next` with contact force `r`

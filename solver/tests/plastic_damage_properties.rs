@@ -49,6 +49,14 @@ fn model() -> PlasticDamage {
     .unwrap()
 }
 
+/// The same material with s0 = 1: tensile damage is never recovered in compression.
+fn model_without_recovery() -> PlasticDamage {
+    let el = Elastic::new("pd", 31027e6, 0.18, 2400.0).unwrap();
+    let mut p = PlasticDamageParams::from_strengths(2.9e6, FC0, 24.1e6, 200.0, 1.0e4);
+    p.s0 = 1.0;
+    PlasticDamage::new("pd", el, &p).unwrap()
+}
+
 fn increment(scale: f64) -> impl Strategy<Value = Voigt> {
     prop::array::uniform6(-scale..scale)
 }
@@ -175,8 +183,9 @@ proptest! {
         let change = dist(&s512, &start);
         let gap = dist(&s256, &s512);
         prop_assert!(gap <= 0.01 * change + 1e-12, "gap {} change {}", gap, change);
-        // And the one-step answer is already close to the converged one.
-        prop_assert!(dist(&split(1), &s512) <= 0.5 * change + 1e-12);
+        // (How close the one-step answer is to the converged one is not a property of the
+        // model: on a softening branch a single backward-Euler step of 6e-4 strain can be
+        // off by more than half the change — found by this test — so it is not asserted.)
     }
 }
 
@@ -184,14 +193,21 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 128, ..ProptestConfig::default() })]
 
     #[test]
-    fn total_mechanical_dissipation_is_never_negative(
+    fn total_mechanical_dissipation_is_never_negative_without_stiffness_recovery(
         path in prop::collection::vec(increment(4e-4), 1..15),
         l in 0.1f64..1.0,
     ) {
         // W = ∫σ : dε (trapezoid over 40 sub-steps per increment) minus the recoverable
         // energy ½ σ : (ε − εᵖ) must stay ≥ 0 (second law, isothermal), up to the
         // quadrature error, bounded here by 1e-6 of Σ|ΔW|.
-        let m = model();
+        //
+        // With s0 = 1 (no stiffness recovery). With recovery (s0 < 1) the stiffness of
+        // eq. (24) depends on the stress state through s(σ̄) and is not derived from a free
+        // energy, so a strain cycle through crack closure can return slightly more work
+        // than it took: this test found a path with −0.77 J/m³ against 5119 J/m³ of gross
+        // work (converged in the quadrature: −0.772 with 400 and 4000 sub-steps), which
+        // is ≥ +408 J/m³ on the same path with s0 = 1. See docs/plastic_damage.md.
+        let m = model_without_recovery();
         let mut st = vec![0.0; m.state_len()];
         m.init_state(&mut st);
         let mut new = st.clone();

@@ -9,11 +9,8 @@
 //! solver does (serially, in mesh order, no colouring), so the gap between the two is the
 //! memory cost per element.
 //!
-//! `hex8_one_point/split_*` time the prototype kernel of `dcfm_benchmarks::split_uniform`
-//! and `hex8_full/jinv_*` that of `dcfm_benchmarks::jinv_full` on the same data. The solver
-//! has adopted both forms (304 and 640 bytes of geometry, issue #2), so the pairs now
-//! measure the same algorithm written twice: a gap between them is a code-generation
-//! difference worth a look.
+//! The kernels are the split Flanagan–Belytschko one-point form (304 B of geometry) and
+//! the J⁻¹-per-Gauss-point full form (640 B), see docs/benchmarks.md for their history.
 
 use std::hint::black_box;
 
@@ -21,8 +18,6 @@ use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use dcfm::element::hex8_full::{self, FullGeometry};
 use dcfm::element::hex8_uniform::{self, UniformGeometry};
 use dcfm::material::{Elastic, Material, PointContext};
-use dcfm_benchmarks::jinv_full::{self, JinvGeometry};
-use dcfm_benchmarks::split_uniform::{self, SplitGeometry};
 
 /// A distorted 0.25 m hexahedron (node order of `hex8_shape::NODE_XI`), shifted by `s`.
 fn coords(s: f64) -> [[f64; 3]; 8] {
@@ -140,43 +135,6 @@ fn one_point(c: &mut Criterion) {
             black_box(&mut f_int);
         })
     });
-
-    // Candidate kernel (Flanagan–Belytschko split form, 304 B/element), same forces.
-    let el = *mat.elastic();
-    let split = SplitGeometry::new(&x, &geo);
-    group.throughput(Throughput::Elements(1));
-    group.sample_size(100);
-    group.bench_function("split_single", |b| {
-        let mut f = [[0.0; 3]; 8];
-        b.iter(|| {
-            let s = split_uniform::internal_force(black_box(&split), &el, black_box(&u), &mut f);
-            black_box((&f, s));
-        })
-    });
-    let splits: Vec<SplitGeometry> = geos
-        .iter()
-        .enumerate()
-        .map(|(e, g)| SplitGeometry::new(&coords(e as f64), g))
-        .collect();
-    group.throughput(Throughput::Elements(STREAM as u64));
-    group.sample_size(20);
-    group.bench_function("split_stream_64000", |b| {
-        let mut f_int = vec![[0.0; 3]; us.len()];
-        b.iter(|| {
-            for (g, nodes) in splits.iter().zip(&conn) {
-                let ue: [[f64; 3]; 8] = std::array::from_fn(|a| us[nodes[a] as usize]);
-                let mut f = [[0.0; 3]; 8];
-                split_uniform::internal_force(g, &el, &ue, &mut f);
-                for (a, fa) in f.iter().enumerate() {
-                    let p = &mut f_int[nodes[a] as usize];
-                    p[0] += fa[0];
-                    p[1] += fa[1];
-                    p[2] += fa[2];
-                }
-            }
-            black_box(&mut f_int);
-        })
-    });
     group.finish();
 }
 
@@ -219,50 +177,6 @@ fn full(c: &mut Criterion) {
                 let ue: [[f64; 3]; 8] = std::array::from_fn(|a| us[nodes[a] as usize]);
                 let mut f = [[0.0; 3]; 8];
                 hex8_full::internal_force(g, &mat, &ue, &[], &mut [], &ctx, &mut f);
-                for (a, fa) in f.iter().enumerate() {
-                    let p = &mut f_int[nodes[a] as usize];
-                    p[0] += fa[0];
-                    p[1] += fa[1];
-                    p[2] += fa[2];
-                }
-            }
-            black_box(&mut f_int);
-        })
-    });
-
-    // Candidate kernel (J⁻¹ per Gauss point, 640 B/element), same forces.
-    let dn = jinv_full::natural_derivatives();
-    let jinv = JinvGeometry::new(&x).expect("valid element");
-    group.throughput(Throughput::Elements(1));
-    group.sample_size(100);
-    group.bench_function("jinv_single", |b| {
-        let mut f = [[0.0; 3]; 8];
-        b.iter(|| {
-            let s = jinv_full::internal_force(
-                black_box(&jinv),
-                &dn,
-                &mat,
-                black_box(&u),
-                &[],
-                &mut [],
-                &ctx,
-                &mut f,
-            );
-            black_box((&f, s));
-        })
-    });
-    let jinvs: Vec<JinvGeometry> = (0..STREAM)
-        .map(|e| JinvGeometry::new(&coords(e as f64)).expect("valid element"))
-        .collect();
-    group.throughput(Throughput::Elements(STREAM as u64));
-    group.sample_size(10);
-    group.bench_function("jinv_stream_64000", |b| {
-        let mut f_int = vec![[0.0; 3]; us.len()];
-        b.iter(|| {
-            for (g, nodes) in jinvs.iter().zip(&conn) {
-                let ue: [[f64; 3]; 8] = std::array::from_fn(|a| us[nodes[a] as usize]);
-                let mut f = [[0.0; 3]; 8];
-                jinv_full::internal_force(g, &dn, &mat, &ue, &[], &mut [], &ctx, &mut f);
                 for (a, fa) in f.iter().enumerate() {
                     let p = &mut f_int[nodes[a] as usize];
                     p[0] += fa[0];

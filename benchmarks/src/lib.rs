@@ -8,11 +8,6 @@
 //!   the throughput targets of issue #2);
 //! - [`git`], [`timestamp`]: provenance of a record (commit, UTC time);
 //! - [`cputime`]: CPU time of the process, to flag runs starved by other processes;
-//! - [`split_uniform`]: the prototype of the one-point kernel (Flanagan–Belytschko split
-//!   form) that the solver adopted for issue #2, kept as an independent implementation that
-//!   the kernel bench and a unit test compare with the solver's;
-//! - [`jinv_full`]: likewise for the fully integrated kernel (J⁻¹ per Gauss point, 640
-//!   instead of 1600 bytes per element);
 //! - [`error`]: the runner's error type.
 
 pub mod cputime;
@@ -20,11 +15,9 @@ pub mod cube;
 pub mod error;
 pub mod git;
 pub mod history;
-pub mod jinv_full;
 pub mod record;
 pub mod runner;
 pub mod speedup;
-pub mod split_uniform;
 pub mod targets;
 pub mod timestamp;
 

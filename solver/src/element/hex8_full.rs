@@ -13,7 +13,7 @@
 //! 54 more multiply-adds per point than with stored ∂N/∂x, for 60 % less memory traffic
 //! (the kernel is memory-bound when the geometry streams from memory).
 
-use crate::element::hex8_shape::{gauss_points, jacobian, shape_derivatives, NODE_XI};
+use crate::element::hex8_shape::{gauss_points, inverse_3x3, jacobian, shape_derivatives, NODE_XI};
 use crate::material::{Material, PointContext, Voigt};
 
 /// 1/√3, the 2×2×2 Gauss abscissa (equal to the one of `hex8_shape::gauss_points`, tested).
@@ -58,27 +58,6 @@ pub struct FullGeometry {
     pub wdet: [f64; 8],
 }
 
-/// Inverse of a 3×3 matrix with determinant `det` (cofactors).
-fn inverse(j: &[[f64; 3]; 3], det: f64) -> [[f64; 3]; 3] {
-    [
-        [
-            (j[1][1] * j[2][2] - j[1][2] * j[2][1]) / det,
-            (j[0][2] * j[2][1] - j[0][1] * j[2][2]) / det,
-            (j[0][1] * j[1][2] - j[0][2] * j[1][1]) / det,
-        ],
-        [
-            (j[1][2] * j[2][0] - j[1][0] * j[2][2]) / det,
-            (j[0][0] * j[2][2] - j[0][2] * j[2][0]) / det,
-            (j[0][2] * j[1][0] - j[0][0] * j[1][2]) / det,
-        ],
-        [
-            (j[1][0] * j[2][1] - j[1][1] * j[2][0]) / det,
-            (j[0][1] * j[2][0] - j[0][0] * j[2][1]) / det,
-            (j[0][0] * j[1][1] - j[0][1] * j[1][0]) / det,
-        ],
-    ]
-}
-
 impl FullGeometry {
     /// Geometry from nodal coordinates; `None` if det J ≤ 0 at a Gauss point.
     pub fn new(x: &[[f64; 3]; 8]) -> Option<Self> {
@@ -89,7 +68,7 @@ impl FullGeometry {
             if det.is_nan() || det <= 0.0 {
                 return None;
             }
-            jinv[g] = inverse(&j, det);
+            jinv[g] = inverse_3x3(&j, det);
             wdet[g] = det;
         }
         Some(Self { jinv, wdet })

@@ -59,17 +59,10 @@ pub fn jacobian(x: &[[f64; 3]; 8], dn: &[[f64; 3]; 8]) -> ([[f64; 3]; 3], f64) {
     (j, det)
 }
 
-/// Cartesian derivatives ∂N_a/∂x_i and det J at a natural point. Returns `None` when
-/// det J ≤ 0.
+/// Inverse of a 3×3 matrix with determinant `det`, by cofactors.
 #[inline]
-pub fn cartesian_derivatives(x: &[[f64; 3]; 8], xi: &[f64; 3]) -> Option<([[f64; 3]; 8], f64)> {
-    let dn = shape_derivatives(xi);
-    let (j, det) = jacobian(x, &dn);
-    if det.is_nan() || det <= 0.0 {
-        return None;
-    }
-    // inv(J) via cofactors; ∂N/∂x_i = Σ_k ∂N/∂ξ_k (J⁻¹)_ki.
-    let inv = [
+pub fn inverse_3x3(j: &[[f64; 3]; 3], det: f64) -> [[f64; 3]; 3] {
+    [
         [
             (j[1][1] * j[2][2] - j[1][2] * j[2][1]) / det,
             (j[0][2] * j[2][1] - j[0][1] * j[2][2]) / det,
@@ -85,7 +78,20 @@ pub fn cartesian_derivatives(x: &[[f64; 3]; 8], xi: &[f64; 3]) -> Option<([[f64;
             (j[0][1] * j[2][0] - j[0][0] * j[2][1]) / det,
             (j[0][0] * j[1][1] - j[0][1] * j[1][0]) / det,
         ],
-    ];
+    ]
+}
+
+/// Cartesian derivatives ∂N_a/∂x_i and det J at a natural point. Returns `None` when
+/// det J ≤ 0.
+#[inline]
+pub fn cartesian_derivatives(x: &[[f64; 3]; 8], xi: &[f64; 3]) -> Option<([[f64; 3]; 8], f64)> {
+    let dn = shape_derivatives(xi);
+    let (j, det) = jacobian(x, &dn);
+    if det.is_nan() || det <= 0.0 {
+        return None;
+    }
+    // ∂N/∂x_i = Σ_k ∂N/∂ξ_k (J⁻¹)_ki.
+    let inv = inverse_3x3(&j, det);
     let mut d = [[0.0; 3]; 8];
     for a in 0..8 {
         for i in 0..3 {

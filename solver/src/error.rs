@@ -30,13 +30,14 @@ pub enum DcfmError {
     /// A mesh-level inconsistency (unknown set, node index out of range, ...).
     #[error("mesh: {0}")]
     Mesh(String),
-    /// The requested time step is above the stable one.
+    /// The requested time step (`time.dt`) is above the stable one.
     #[error(
-        "time step {requested:.4e} s exceeds the stable step {stable:.4e} s \
+        "{file}: time.dt = {requested:.4e} s: exceeds the stable step {stable:.4e} s \
          (safety factor included), limited by element {element} \
          (characteristic length {length:.4e} m, wave speed {speed:.1} m/s)"
     )]
     TimeStepTooLarge {
+        file: String,
         requested: f64,
         stable: f64,
         element: usize,
@@ -76,6 +77,40 @@ impl DcfmError {
             field: field.into(),
             value: value.to_string(),
             expected: expected.into(),
+        }
+    }
+
+    /// The same error with `file` named where the error had no file yet (errors raised by
+    /// the model, outside any case file).
+    pub fn in_file(self, file: &str) -> Self {
+        match self {
+            DcfmError::TimeStepTooLarge {
+                file: f,
+                requested,
+                stable,
+                element,
+                length,
+                speed,
+            } if f.is_empty() => DcfmError::TimeStepTooLarge {
+                file: file.to_string(),
+                requested,
+                stable,
+                element,
+                length,
+                speed,
+            },
+            DcfmError::InvalidInput {
+                file: f,
+                field,
+                value,
+                expected,
+            } if f.is_empty() => DcfmError::InvalidInput {
+                file: file.to_string(),
+                field,
+                value,
+                expected,
+            },
+            other => other,
         }
     }
 

@@ -6,6 +6,9 @@
 //!
 //! Data flow: case file → [`model::Model`] → static stage → dynamic stage
 //! ([`stage::dynamic`]) → outputs. See `docs/ARCHITECTURE.md`.
+//!
+//! The library is the core alone: argument parsing, the progress bar, the run driver and
+//! the files a run writes live in the `dcfm-app` crate (`solver/app/`).
 
 // Index loops over the fixed-size arrays of the kernels (8 nodes, 3 directions, 6 Voigt
 // components) read like the equations they implement and vectorise as well as iterators.
@@ -20,7 +23,6 @@ pub mod load;
 pub mod material;
 pub mod mesh;
 pub mod model;
-pub mod output;
 pub mod stage;
 
 pub use error::{DcfmError, Result};

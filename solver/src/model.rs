@@ -250,6 +250,41 @@ impl Model {
         total / self.n_elements().max(1) as f64
     }
 
+    /// The time step of a run: `requested` if given, else `safety` × the critical step
+    /// with damping; a requested step above that is refused with the limiting element.
+    /// The one place where a step is checked (case files and programs alike).
+    pub fn time_step(&self, requested: Option<f64>, safety: f64) -> Result<f64> {
+        if !(safety.is_finite() && safety > 0.0 && safety <= 1.0) {
+            return Err(DcfmError::invalid(
+                "",
+                "time.safety",
+                safety,
+                "must be in (0, 1]",
+            ));
+        }
+        let stable = safety * self.critical_step_with_damping();
+        let dt = requested.unwrap_or(stable);
+        if !(dt.is_finite() && dt > 0.0) {
+            return Err(DcfmError::invalid(
+                "",
+                "time.dt",
+                dt,
+                "must be finite and > 0 (s)",
+            ));
+        }
+        if dt > stable * (1.0 + 1e-12) {
+            return Err(DcfmError::TimeStepTooLarge {
+                file: String::new(),
+                requested: dt,
+                stable,
+                element: self.stable.element,
+                length: self.stable.length,
+                speed: self.stable.speed,
+            });
+        }
+        Ok(dt)
+    }
+
     /// Critical step reduced by stiffness-proportional damping:
     /// Δt ≤ (2/ω)(√(1+ξ²) − ξ) with ω = 2/Δt_crit and ξ = βω/2 (Belytschko et al. 2000, eq. 6.2.23).
     pub fn critical_step_with_damping(&self) -> f64 {

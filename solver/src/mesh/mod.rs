@@ -2,10 +2,12 @@
 //!
 //! Hex8 node order is that of VTK and Gmsh: nodes 0–3 on the face ζ = −1 counter-clockwise
 //! seen from +ζ, nodes 4–7 above them. Natural coordinates of node a are
-//! [`element::hex8_shape::NODE_XI`](crate::element::hex8_shape::NODE_XI).
+//! [`hex8_shape::NODE_XI`]. The trilinear geometry of the hex8 ([`hex8_shape`]: shape
+//! functions, Jacobian checks) is part of the mesh; the element kernels build on it.
 
 pub mod box_generator;
 pub mod gmsh;
+pub mod hex8_shape;
 mod model_mesh;
 mod node_merge;
 

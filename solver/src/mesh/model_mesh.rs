@@ -146,7 +146,7 @@ impl Mesh {
                     reason: format!("repeated node in connectivity {conn:?} (degenerate hex8)"),
                 });
             }
-            crate::element::hex8_shape::check_jacobian(&self.element_coords(e))
+            crate::mesh::hex8_shape::check_jacobian(&self.element_coords(e))
                 .map_err(|reason| DcfmError::BadElement { element: e, reason })?;
         }
         for (name, nodes) in &self.node_sets {

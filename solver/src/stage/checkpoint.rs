@@ -1,12 +1,11 @@
 //! Checkpoints of a running simulation, so that long runs can be resumed: displacements,
 //! half-step velocities, accelerations, energies, every integration-point state and the
-//! state of every contact interface, in a little-endian binary file written atomically.
+//! state of every contact interface, as little-endian bytes. The core only serialises;
+//! the application writes the bytes to a file (atomically) and reads them back.
 
-use std::io::{Read, Write};
-use std::path::Path;
+use std::io::Write;
 
 use crate::error::{DcfmError, Result};
-use crate::output::write_atomic_with;
 use crate::stage::{Energies, Simulation};
 
 const MAGIC: &[u8; 8] = b"DCFMCKP2";
@@ -36,9 +35,9 @@ fn energies_vec(e: &Energies) -> [f64; 12] {
     ]
 }
 
-/// Write the simulation's state to `path` (atomically).
-pub fn write_checkpoint(path: &Path, sim: &Simulation) -> Result<()> {
-    write_atomic_with(path, |w| {
+/// Serialise the simulation's state into `w`.
+pub fn write_checkpoint(w: &mut impl Write, sim: &Simulation) -> std::io::Result<()> {
+    {
         w.write_all(MAGIC)?;
         w.write_all(&(sim.u.len() as u64).to_le_bytes())?;
         w.write_all(&(sim.model.groups.len() as u64).to_le_bytes())?;
@@ -64,7 +63,7 @@ pub fn write_checkpoint(path: &Path, sim: &Simulation) -> Result<()> {
         w.write_all(&(contact.len() as u64).to_le_bytes())?;
         put_f64s(w, &contact)?;
         Ok(())
-    })
+    }
 }
 
 struct Reader<'a> {
@@ -97,15 +96,12 @@ impl Reader<'_> {
     }
 }
 
-/// Restore a checkpoint into `sim`, which must have been built from the same case.
-pub fn read_checkpoint(path: &Path, sim: &mut Simulation) -> Result<()> {
-    let file = path.display().to_string();
-    let mut bytes = Vec::new();
-    std::fs::File::open(path)
-        .and_then(|mut f| f.read_to_end(&mut bytes))
-        .map_err(|e| DcfmError::io(&file, e))?;
+/// Restore a checkpoint's `bytes` into `sim`, which must have been built from the same
+/// case; `file` names the checkpoint in errors.
+pub fn read_checkpoint(bytes: &[u8], file: &str, sim: &mut Simulation) -> Result<()> {
+    let file = file.to_string();
     let mut r = Reader {
-        bytes: &bytes,
+        bytes,
         pos: 0,
         file: file.clone(),
     };

@@ -87,24 +87,7 @@ impl Simulation {
     /// Start from rest (plus the model's initial velocities) with time step `dt`, which
     /// must not exceed `safety` × the critical step (damping included).
     pub fn new(model: Model, dt: f64, safety: f64) -> Result<Self> {
-        let stable = safety * model.critical_step_with_damping();
-        if !(dt.is_finite() && dt > 0.0) {
-            return Err(DcfmError::invalid(
-                "",
-                "time.dt",
-                dt,
-                "must be finite and > 0",
-            ));
-        }
-        if dt > stable * (1.0 + 1e-12) {
-            return Err(DcfmError::TimeStepTooLarge {
-                requested: dt,
-                stable,
-                element: model.stable.element,
-                length: model.stable.length,
-                speed: model.stable.speed,
-            });
-        }
+        let dt = model.time_step(Some(dt), safety)?;
         Ok(Self::new_unchecked(model, dt))
     }
 

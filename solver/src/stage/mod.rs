@@ -3,7 +3,6 @@
 pub mod checkpoint;
 pub mod dynamic;
 pub mod energy;
-pub mod run;
 
 pub use dynamic::Simulation;
 pub use energy::Energies;

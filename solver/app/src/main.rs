@@ -13,7 +13,7 @@ use std::io::Write;
 use clap::{Parser, Subcommand};
 
 use dcfm::case::load_case;
-use dcfm::stage::run::{run_case, RunOptions};
+use dcfm_app::run::{run_case, RunOptions};
 
 #[derive(Parser)]
 #[command(

@@ -8,7 +8,7 @@ use serde::Serialize;
 
 use super::atomic::write_atomic_with;
 
-use crate::error::Result;
+use dcfm::error::Result;
 
 /// Write `value` to `path` as pretty-printed JSON (with a final newline), atomically.
 pub fn write_summary<T: Serialize>(path: &Path, value: &T) -> Result<()> {

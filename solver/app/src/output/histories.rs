@@ -13,7 +13,7 @@ use std::io::{BufWriter, Read, Seek, SeekFrom, Write};
 use std::path::{Path, PathBuf};
 
 use super::label;
-use crate::error::{DcfmError, Result};
+use dcfm::error::{DcfmError, Result};
 
 /// Rows between flushes unless [`HistoryWriter::with_flush_every`] says otherwise.
 pub const DEFAULT_FLUSH_EVERY: usize = 100;

@@ -7,11 +7,14 @@ use std::time::Instant;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde::Serialize;
 
-use crate::case::{Case, OutputSection};
-use crate::error::{DcfmError, Result};
-use crate::output::{write_summary, write_vtu, HistoryWriter, PvdCollection, VtuField};
-use crate::stage::checkpoint::{read_checkpoint, write_checkpoint};
-use crate::stage::{Energies, Simulation};
+use dcfm::case::{Case, OutputSection};
+use dcfm::error::{DcfmError, Result};
+use dcfm::stage::checkpoint::{read_checkpoint, write_checkpoint};
+use dcfm::stage::{Energies, Simulation};
+
+use crate::output::{
+    write_atomic_with, write_summary, write_vtu, HistoryWriter, PvdCollection, VtuField,
+};
 
 /// How to run.
 #[derive(Clone, Debug)]
@@ -120,7 +123,7 @@ fn history_row(sim: &Simulation, output: &OutputSection, row: &mut Vec<f64>) {
         row.extend(s);
     }
     for g in sim.model.groups.iter().filter(|g| g.material.has_damage()) {
-        let per_element = output.damaged_volume == crate::case::DamagedVolumeMeasure::Element;
+        let per_element = output.damaged_volume == dcfm::case::DamagedVolumeMeasure::Element;
         row.extend(g.damaged_volume(output.damage_threshold, per_element));
     }
     if let Some(c) = &sim.model.contact {
@@ -269,7 +272,9 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
     let checkpoint = out.join("checkpoint.bin");
     let mut resumed_from = None;
     if opts.resume && checkpoint.exists() {
-        read_checkpoint(&checkpoint, &mut sim)?;
+        let label = checkpoint.display().to_string();
+        let bytes = std::fs::read(&checkpoint).map_err(|e| DcfmError::io(&label, e))?;
+        read_checkpoint(&bytes, &label, &mut sim)?;
         resumed_from = Some(sim.step);
     }
     let pvd_path = out.join("case.pvd");
@@ -337,7 +342,7 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
         }
         if output.checkpoint_every > 0 && sim.step % output.checkpoint_every == 0 {
             hist.flush()?;
-            write_checkpoint(&checkpoint, &sim)?;
+            write_atomic_with(&checkpoint, |w| write_checkpoint(w, &sim))?;
         }
         if sim.step % 64 == 0 {
             let el = t0.elapsed().as_secs_f64().max(1e-9);

@@ -9,7 +9,7 @@
 use std::path::{Path, PathBuf};
 
 use super::{atomic::write_atomic, label, vtu::xml_escape};
-use crate::error::{DcfmError, Result};
+use dcfm::error::{DcfmError, Result};
 
 /// One step of the collection.
 #[derive(Clone, Debug, PartialEq)]

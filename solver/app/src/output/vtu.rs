@@ -18,7 +18,7 @@ use std::io::{self, Write};
 use std::path::Path;
 
 use super::{atomic::write_atomic_with, label};
-use crate::error::{DcfmError, Result};
+use dcfm::error::{DcfmError, Result};
 
 /// VTK cell type of the 8-node hexahedron.
 pub const VTK_HEXAHEDRON: u8 = 12;

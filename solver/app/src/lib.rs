@@ -1,0 +1,10 @@
+//! # dcfm-app — the `dcfm` command line around the core
+//!
+//! What only an application needs, kept out of the core library (`dcfm`) so that the
+//! Python module links the core alone: the run driver with its progress bar and
+//! checkpoint files ([`run`]), and the files a run writes ([`output`]: VTU/PVD, CSV
+//! histories, the JSON summary, atomic writes). The binary `dcfm` (src/main.rs) parses
+//! the command line.
+
+pub mod output;
+pub mod run;

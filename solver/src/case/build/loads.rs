@@ -1,0 +1,83 @@
+//! `[loads]`, `[damping]` and `[initial]`: nodal loads, gravity, Rayleigh damping and
+//! initial velocities.
+
+use crate::case::schema::{DampingSection, InitialSection, LoadSection};
+use crate::error::{DcfmError, Result};
+use crate::load::{Gravity, NodalLoad, TimeFunction};
+use crate::model::{Model, Rayleigh};
+
+use super::checks::{finite_components, nodes_of};
+
+/// Nodal loads and gravity of `[loads]`.
+pub(super) fn build_loads(model: &mut Model, section: &LoadSection, label: &str) -> Result<()> {
+    let unit = TimeFunction::Constant { value: 1.0 };
+    for (k, l) in section.nodal.iter().enumerate() {
+        let field = format!("loads.nodal[{k}]");
+        finite_components(label, &format!("{field}.force"), &l.force, "N")?;
+        let history = l.history.clone().unwrap_or(unit.clone());
+        history.validate(label, &format!("{field}.history"))?;
+        let nodes = nodes_of(&model.mesh, label, &format!("{field}.set"), &l.set)?;
+        model.nodal_loads.push(NodalLoad {
+            nodes,
+            force: l.force,
+            history,
+        });
+    }
+    if let Some(g) = &section.gravity {
+        finite_components(label, "loads.gravity.acceleration", &g.acceleration, "m/s²")?;
+        let history = g.history.clone().unwrap_or(unit.clone());
+        history.validate(label, "loads.gravity.history")?;
+        model.gravity = Some(Gravity {
+            acceleration: g.acceleration,
+            history,
+        });
+    }
+    Ok(())
+}
+
+/// Rayleigh coefficients of `[damping]`.
+pub(super) fn build_damping(
+    model: &mut Model,
+    section: &DampingSection,
+    label: &str,
+) -> Result<()> {
+    for (name, v) in [("alpha", section.alpha), ("beta", section.beta)] {
+        if !(v.is_finite() && v >= 0.0) {
+            return Err(DcfmError::invalid(
+                label,
+                format!("damping.{name}"),
+                v,
+                "must be finite and ≥ 0",
+            ));
+        }
+    }
+    model.damping = Rayleigh {
+        alpha: section.alpha,
+        beta: section.beta,
+    };
+    Ok(())
+}
+
+/// Initial velocities of `[initial]`.
+pub(super) fn build_initial(
+    model: &mut Model,
+    section: &InitialSection,
+    label: &str,
+) -> Result<()> {
+    for (k, iv) in section.velocity.iter().enumerate() {
+        finite_components(
+            label,
+            &format!("initial.velocity[{k}].value"),
+            &iv.value,
+            "m/s",
+        )?;
+        let nodes = nodes_of(
+            &model.mesh,
+            label,
+            &format!("initial.velocity[{k}].set"),
+            &iv.set,
+        )?;
+        model.initial_velocity.push((nodes, iv.value));
+    }
+    Ok(())
+}

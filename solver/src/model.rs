@@ -124,6 +124,8 @@ pub struct Model {
     pub element_location: Vec<(u32, u32)>,
     /// Contact interfaces (dynamic contact force method), if any.
     pub contact: Option<crate::contact::ContactSystem>,
+    /// Absorbing and free-field boundaries and the seismic input, if any.
+    pub boundaries: Option<crate::boundary::BoundarySystem>,
 }
 
 impl Model {
@@ -198,6 +200,7 @@ impl Model {
         let n = mesh.n_nodes();
         Ok(Self {
             contact: None,
+            boundaries: None,
             element_location,
             mesh,
             groups,
@@ -232,6 +235,11 @@ impl Model {
     ) -> (crate::material::Voigt, crate::material::Voigt) {
         let (g, le) = self.element_location[e];
         self.groups[g as usize].strain_stress_of(le as usize, u)
+    }
+
+    /// Material of global element `e`.
+    pub fn element_material(&self, e: usize) -> &crate::material::Material {
+        &self.groups[self.element_location[e].0 as usize].material
     }
 
     /// Number of elements.
@@ -285,12 +293,31 @@ impl Model {
         Ok(dt)
     }
 
-    /// Critical step reduced by stiffness-proportional damping:
-    /// Δt ≤ (2/ω)(√(1+ξ²) − ξ) with ω = 2/Δt_crit and ξ = βω/2 (Belytschko et al. 2000, eq. 6.2.23).
+    /// Critical step of the undamped model: the element bound 2/ω with
+    /// ω² = (2/Δt_elements)² + the springs' ω² (boundary springs), and not above the
+    /// free-field grids' own critical step.
+    pub fn critical_step(&self) -> f64 {
+        let mut dt = self.stable.critical;
+        if let Some(b) = &self.boundaries {
+            let w2 = (2.0 / dt).powi(2) + b.spring_omega_squared(&self.mass);
+            dt = 2.0 / w2.sqrt();
+            if let Some(ff) = b.free_field_critical_step() {
+                dt = dt.min(ff);
+            }
+        }
+        dt
+    }
+
+    /// Critical step with Rayleigh damping C = αM + βK, both terms taking the lagged
+    /// velocity V^{n−½}: for a mode ω the leapfrog is stable while ω²Δt² + 2(α + βω²)Δt < 4
+    /// (Jury's conditions on λ² − (2 − ω²Δt² − cΔt)λ + 1 − cΔt, c = α + βω²), i.e.
+    /// Δt ≤ (2/ω)(√(1+ξ²) − ξ) with ξ = (α/ω + βω)/2 (Belytschko et al. 2000, eq. 6.2.23,
+    /// with the mass-proportional part included), the left side growing with ω so that
+    /// ω = ω_max = 2/Δt_crit governs.
     pub fn critical_step_with_damping(&self) -> f64 {
-        let dt = self.stable.critical;
+        let dt = self.critical_step();
         let omega = 2.0 / dt;
-        let xi = 0.5 * self.damping.beta * omega;
+        let xi = 0.5 * (self.damping.alpha / omega + self.damping.beta * omega);
         (2.0 / omega) * ((1.0 + xi * xi).sqrt() - xi)
     }
 }

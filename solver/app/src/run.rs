@@ -66,7 +66,8 @@ fn norm(x: &[f64; 3]) -> f64 {
 
 fn history_header(output: &OutputSection, sim: &Simulation) -> Vec<String> {
     let mut h: Vec<String> = [
-        "time", "kinetic", "internal", "damping", "contact", "external", "input", "residual",
+        "time", "kinetic", "internal", "damping", "contact", "external", "input", "boundary",
+        "residual",
     ]
     .iter()
     .map(|s| s.to_string())
@@ -110,6 +111,7 @@ fn history_row(sim: &Simulation, output: &OutputSection, row: &mut Vec<f64>) {
         e.contact,
         e.external,
         e.input,
+        e.boundary,
         e.residual(),
     ]);
     for &n in &output.nodes {

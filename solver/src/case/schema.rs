@@ -35,6 +35,9 @@ pub struct CaseFile {
     /// Contact interfaces (`[[interfaces]]`), see docs/contact.md.
     #[serde(default)]
     pub interfaces: Vec<crate::contact::InterfaceSpec>,
+    /// Seismic input motion (`[seismic]`), see docs/boundaries.md.
+    #[serde(default)]
+    pub seismic: Option<crate::boundary::seismic_input::SeismicSection>,
 }
 
 /// `[time]`.
@@ -206,6 +209,12 @@ pub struct BoundarySection {
     pub fixed: Vec<FixedSection>,
     #[serde(default)]
     pub prescribed: Vec<PrescribedSection>,
+    /// Absorbing boundaries (`[[boundary.absorbing]]`).
+    #[serde(default)]
+    pub absorbing: Vec<crate::boundary::AbsorbingSpec>,
+    /// Free-field coupling (`[boundary.free_field]`).
+    #[serde(default)]
+    pub free_field: Option<crate::boundary::free_field::FreeFieldSection>,
 }
 
 /// `[[boundary.fixed]]`.

@@ -29,7 +29,8 @@
 //! where the paper is terse.
 
 mod checkpoint;
-pub mod geom;
+/// The bilinear face geometry and vector helpers (they belong to the mesh; contact uses them).
+pub use crate::mesh::face_geometry as geom;
 pub mod pair;
 mod setup;
 pub mod surface;

@@ -47,6 +47,14 @@ pub enum TimeFunction {
     },
     /// Piecewise-linear table; constant beyond its ends.
     Table { times: Vec<f64>, values: Vec<f64> },
+    /// Ricker wavelet h = amplitude (1 − 2π²f²τ²) exp(−π²f²τ²), τ = t − delay
+    /// (f the peak frequency; delay 1.5/f by default, where h is 1e-8 of its peak).
+    Ricker {
+        amplitude: f64,
+        frequency: f64,
+        #[serde(default)]
+        delay: Option<f64>,
+    },
 }
 
 impl TimeFunction {
@@ -117,6 +125,18 @@ impl TimeFunction {
                 finite("amplitude", *amplitude)?;
                 positive("duration", *duration)?;
                 finite("start", *start)
+            }
+            TimeFunction::Ricker {
+                amplitude,
+                frequency,
+                delay,
+            } => {
+                finite("amplitude", *amplitude)?;
+                positive("frequency", *frequency)?;
+                if let Some(d) = delay {
+                    finite("delay", *d)?;
+                }
+                Ok(())
             }
             TimeFunction::Table { times, values } => {
                 if times.is_empty() || times.len() != values.len() {
@@ -203,6 +223,15 @@ impl TimeFunction {
                     0.0
                 }
             }
+            TimeFunction::Ricker {
+                amplitude,
+                frequency,
+                delay,
+            } => {
+                let tau = t - delay.unwrap_or(1.5 / frequency);
+                let a = (std::f64::consts::PI * frequency * tau).powi(2);
+                amplitude * (1.0 - 2.0 * a) * (-a).exp()
+            }
             TimeFunction::Table { times, values } => {
                 let n = times.len();
                 if t <= times[0] {
@@ -260,6 +289,17 @@ impl TimeFunction {
                 duration,
                 start,
             } => amplitude * (t - start).clamp(0.0, *duration),
+            TimeFunction::Ricker {
+                amplitude,
+                frequency,
+                delay,
+            } => {
+                // d/dτ [τ exp(−π²f²τ²)] = (1 − 2π²f²τ²) exp(−π²f²τ²).
+                let t0 = delay.unwrap_or(1.5 / frequency);
+                let a = (PI * frequency).powi(2);
+                let g = |tau: f64| tau * (-a * tau * tau).exp();
+                amplitude * (g(t - t0) - g(-t0))
+            }
             TimeFunction::Table { times, values } => {
                 let mut acc = 0.0;
                 let mut prev_t = 0.0f64.min(times[0]);
@@ -297,6 +337,29 @@ mod tests {
         };
         assert!((h.integral(1.0) - 1.2732e-3).abs() < 1e-7);
         assert!((h.value(0.01) - 0.1).abs() < 1e-15);
+    }
+
+    #[test]
+    fn ricker_integral_matches_quadrature() {
+        let h = TimeFunction::Ricker {
+            amplitude: 2.0,
+            frequency: 5.0,
+            delay: None,
+        };
+        assert!((h.value(0.3) - 2.0).abs() < 1e-15);
+        let n = 20000;
+        let t = 0.5;
+        let dt = t / n as f64;
+        let quad: f64 = (0..n)
+            .map(|k| 0.5 * dt * (h.value(k as f64 * dt) + h.value((k + 1) as f64 * dt)))
+            .sum();
+        assert!(
+            (h.integral(t) - quad).abs() < 1e-8,
+            "{} vs {quad}",
+            h.integral(t)
+        );
+        // The wavelet has zero mean: its integral returns to ~0.
+        assert!(h.integral(1.0).abs() < 1e-8);
     }
 
     #[test]

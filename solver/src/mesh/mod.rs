@@ -6,10 +6,13 @@
 //! functions, Jacobian checks) is part of the mesh; the element kernels build on it.
 
 pub mod box_generator;
+pub mod face_geometry;
 pub mod gmsh;
 pub mod hex8_shape;
 mod model_mesh;
 mod node_merge;
+pub mod outer_faces;
+pub mod vertical_profile;
 
 pub use box_generator::{BlockSpec, BoxMeshSpec};
 pub use model_mesh::{Face, Mesh, HEX8_FACES};

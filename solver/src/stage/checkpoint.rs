@@ -8,7 +8,7 @@ use std::io::Write;
 use crate::error::{DcfmError, Result};
 use crate::stage::{Energies, Simulation};
 
-const MAGIC: &[u8; 8] = b"DCFMCKP2";
+const MAGIC: &[u8; 8] = b"DCFMCKP3";
 
 fn put_f64s(w: &mut impl Write, xs: &[f64]) -> std::io::Result<()> {
     for x in xs {
@@ -17,7 +17,10 @@ fn put_f64s(w: &mut impl Write, xs: &[f64]) -> std::io::Result<()> {
     Ok(())
 }
 
-fn energies_vec(e: &Energies) -> [f64; 12] {
+/// Number of values of [`energies_vec`].
+const N_ENERGY_VALUES: usize = 14;
+
+fn energies_vec(e: &Energies) -> [f64; N_ENERGY_VALUES] {
     let a = e.accumulated;
     [
         e.kinetic,
@@ -26,12 +29,14 @@ fn energies_vec(e: &Energies) -> [f64; 12] {
         e.contact,
         e.external,
         e.input,
+        e.boundary,
         e.initial_kinetic,
         a[0],
         a[1],
         a[2],
         a[3],
         a[4],
+        a[5],
     ]
 }
 
@@ -62,6 +67,14 @@ pub fn write_checkpoint(w: &mut impl Write, sim: &Simulation) -> std::io::Result
             .unwrap_or_default();
         w.write_all(&(contact.len() as u64).to_le_bytes())?;
         put_f64s(w, &contact)?;
+        let boundary = sim
+            .model
+            .boundaries
+            .as_ref()
+            .map(|b| b.state_values())
+            .unwrap_or_default();
+        w.write_all(&(boundary.len() as u64).to_le_bytes())?;
+        put_f64s(w, &boundary)?;
         Ok(())
     }
 }
@@ -137,7 +150,9 @@ pub fn read_checkpoint(bytes: &[u8], file: &str, sim: &mut Simulation) -> Result
             ),
         });
     }
-    let e: Vec<f64> = (0..12).map(|_| r.f64()).collect::<Result<_>>()?;
+    let e: Vec<f64> = (0..N_ENERGY_VALUES)
+        .map(|_| r.f64())
+        .collect::<Result<_>>()?;
     for field in [&mut sim.u, &mut sim.v, &mut sim.a] {
         for x in field.iter_mut() {
             for c in x.iter_mut() {
@@ -174,6 +189,24 @@ pub fn read_checkpoint(bytes: &[u8], file: &str, sim: &mut Simulation) -> Result
         }
         None => {}
     }
+    let nb = r.u64()? as usize;
+    let boundary: Vec<f64> = (0..nb).map(|_| r.f64()).collect::<Result<_>>()?;
+    match sim.model.boundaries.as_mut() {
+        Some(b) => b
+            .restore_state(&boundary)
+            .map_err(|message| DcfmError::Parse {
+                file: file.clone(),
+                message,
+            })?,
+        None if nb > 0 => {
+            return Err(DcfmError::Parse {
+                file,
+                message: "checkpoint has boundary state but the case has no absorbing boundary"
+                    .into(),
+            })
+        }
+        None => {}
+    }
     sim.step = step;
     sim.time = time;
     sim.energies = Energies {
@@ -183,8 +216,9 @@ pub fn read_checkpoint(bytes: &[u8], file: &str, sim: &mut Simulation) -> Result
         contact: e[3],
         external: e[4],
         input: e[5],
-        initial_kinetic: e[6],
-        accumulated: [e[7], e[8], e[9], e[10], e[11]],
+        boundary: e[6],
+        initial_kinetic: e[7],
+        accumulated: [e[8], e[9], e[10], e[11], e[12], e[13]],
     };
     sim.energy_account_restored();
     Ok(())

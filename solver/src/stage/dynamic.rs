@@ -29,6 +29,9 @@ use crate::stage::energy::{Energies, EnergyParts};
 /// order whatever the number of threads.
 const NODE_CHUNK: usize = 1024;
 
+/// Bit of `Simulation::node_kind` marking a node of the boundary system.
+const BOUNDARY_NODE: u8 = 1 << 3;
+
 /// Per-chunk result of the node pass.
 #[derive(Clone, Copy, Debug, Default)]
 struct ChunkResult {
@@ -69,6 +72,11 @@ pub struct Simulation {
     contact_nodes: Vec<u32>,
     /// Index into `model.constraints.prescribed` for each node DOF (u32::MAX: none).
     prescribed_of: Vec<[u32; 3]>,
+    /// Per node: its constrained DOF bits, plus [`BOUNDARY_NODE`] for a node of the
+    /// boundary system (updated in the boundary pass, not in the node pass).
+    node_kind: Vec<u8>,
+    /// Slot of each node in the boundary system (u32::MAX: none).
+    boundary_slot: Vec<u32>,
     chunks: Vec<ChunkResult>,
     /// The next step is the first of the energy account (t⁰ is set there).
     energy_origin_pending: bool,
@@ -123,7 +131,19 @@ impl Simulation {
         loaded_nodes.dedup();
         let kinetic = kinetic_energy(&v, &model.mass);
         let n_chunks = n.div_ceil(NODE_CHUNK);
+        let mut node_kind = model.constraints.constrained.clone();
+        let mut boundary_slot = vec![u32::MAX; n];
+        let (alpha, beta) = (model.damping.alpha, model.damping.beta);
+        if let Some(b) = model.boundaries.as_mut() {
+            b.prepare(dt, &model.mass, &model.constraints.constrained, alpha, beta);
+            for (slot, &i) in b.nodes.iter().enumerate() {
+                node_kind[i as usize] |= BOUNDARY_NODE;
+                boundary_slot[i as usize] = slot as u32;
+            }
+        }
         Self {
+            node_kind,
+            boundary_slot,
             dt,
             step: 0,
             time: 0.0,
@@ -240,6 +260,9 @@ impl Simulation {
         // 1–2.
         self.internal_forces();
         self.external_forces();
+        if let Some(b) = self.model.boundaries.as_mut() {
+            b.begin_step(self.time, self.dt);
+        }
         // 3. Predictor + energies of the uncorrected motion, in fixed chunks.
         let dt = self.dt;
         let t = self.time;
@@ -261,6 +284,7 @@ impl Simulation {
             mass: &self.model.mass,
             inv_mass: &self.model.inv_mass,
             constrained: &self.model.constraints.constrained,
+            node_kind: &self.node_kind,
             fixed: &self.model.constraints.fixed,
             prescribed: &self.model.constraints.prescribed,
             prescribed_of: &self.prescribed_of,
@@ -281,8 +305,12 @@ impl Simulation {
                 let mut out = ChunkResult::default();
                 for (k, ((ui, vi), ai)) in un.iter_mut().zip(vn.iter_mut()).zip(an).enumerate() {
                     let i = ci * NODE_CHUNK + k;
-                    if ctx.constrained[i] == 0 {
+                    let kind = ctx.node_kind[i];
+                    if kind == 0 {
                         ctx.predict_free(i, ui, vi, &mut out.parts);
+                    } else if kind & BOUNDARY_NODE != 0 {
+                        // Updated in the boundary pass below.
+                        continue;
                     } else {
                         ctx.predict(i, ui, vi);
                         let p = ctx.energy_parts(i, vi, &[0.0; 3]);
@@ -308,6 +336,29 @@ impl Simulation {
                 *res = out;
             });
         debug_assert_eq!(n, self.u_next.len());
+        // 3b. Boundary nodes: predictor with the boundary forces and the centred dashpots.
+        let mut boundary_parts: EnergyParts = [0.0; 13];
+        let mut boundary_worst: Option<(u32, bool, f64)> = None;
+        if let Some(bs) = self.model.boundaries.as_ref() {
+            for (b, &i) in bs.nodes.iter().enumerate() {
+                let i = i as usize;
+                let (un, vn, p) = ctx.boundary_node(i, bs, b, &[0.0; 3]);
+                self.u_next[i] = un;
+                self.v_next[i] = vn;
+                self.a[i] = std::array::from_fn(|d| (vn[d] - ctx.v[i][d]) / dt);
+                for k in 0..13 {
+                    boundary_parts[k] += p[k];
+                }
+                let vm = vn[0].abs().max(vn[1].abs()).max(vn[2].abs());
+                if !vm.is_finite() || !un.iter().all(|x| x.is_finite()) {
+                    if !boundary_worst.is_some_and(|w| w.1) {
+                        boundary_worst = Some((i as u32, true, f64::NAN));
+                    }
+                } else if boundary_worst.is_none_or(|w| !w.1 && vm > w.2) {
+                    boundary_worst = Some((i as u32, false, vm));
+                }
+            }
+        }
         // 4. Contact forces Rⁿ from the predictor (eqs. 5–22).
         for &i in &self.contact_nodes {
             self.r[i as usize] = [0.0; 3];
@@ -331,25 +382,41 @@ impl Simulation {
             self.contact_seconds += started.elapsed().as_secs_f64();
         }
         // 5. Correction at the touched nodes (with the energy fix-up).
-        let mut contact_fix: EnergyParts = [0.0; 11];
+        let mut contact_fix: EnergyParts = [0.0; 13];
         for &i in &self.contact_nodes {
             let i = i as usize;
-            let w = self.model.inv_mass[i];
-            let before = ctx.energy_parts(i, &self.v_next[i], &[0.0; 3]);
-            for d in 0..3 {
-                self.u_next[i][d] += dt * dt * w * self.r[i][d];
-                self.v_next[i][d] += dt * w * self.r[i][d];
-            }
-            let after = ctx.energy_parts(i, &self.v_next[i], &self.r[i]);
-            for k in 0..11 {
+            let slot = self.boundary_slot[i];
+            let (before, after) = if slot != u32::MAX {
+                // A boundary node: its update with the contact force as one more force
+                // (the dashpot reacts to it within the step).
+                let bs = self
+                    .model
+                    .boundaries
+                    .as_ref()
+                    .expect("slot of a boundary node");
+                let (_, _, before) = ctx.boundary_node(i, bs, slot as usize, &[0.0; 3]);
+                let (un, vn, after) = ctx.boundary_node(i, bs, slot as usize, &self.r[i]);
+                self.u_next[i] = un;
+                self.v_next[i] = vn;
+                (before, after)
+            } else {
+                let w = self.model.inv_mass[i];
+                let before = ctx.energy_parts(i, &self.v_next[i], &[0.0; 3]);
+                for d in 0..3 {
+                    self.u_next[i][d] += dt * dt * w * self.r[i][d];
+                    self.v_next[i][d] += dt * w * self.r[i][d];
+                }
+                (before, ctx.energy_parts(i, &self.v_next[i], &self.r[i]))
+            };
+            for k in 0..13 {
                 contact_fix[k] += after[k] - before[k];
             }
         }
         // 6. Energies, instability check.
-        let mut parts: EnergyParts = [0.0; 11];
+        let mut parts: EnergyParts = [0.0; 13];
         let mut worst: Option<(u32, bool, f64)> = None;
         for c in &self.chunks {
-            for k in 0..11 {
+            for k in 0..13 {
                 parts[k] += c.parts[k];
             }
             if c.nonfinite {
@@ -360,8 +427,13 @@ impl Simulation {
                 worst = Some((c.vmax_node, false, c.vmax));
             }
         }
-        for k in 0..11 {
-            parts[k] += contact_fix[k];
+        for k in 0..13 {
+            parts[k] += boundary_parts[k] + contact_fix[k];
+        }
+        if let Some(bw) = boundary_worst {
+            if bw.1 || worst.is_none_or(|w| !w.1 && bw.2 > w.2) {
+                worst = Some(bw);
+            }
         }
         let e = &mut self.energies;
         e.advance(&parts, self.energy_origin_pending);
@@ -484,6 +556,7 @@ struct NodeContext<'a> {
     mass: &'a [f64],
     inv_mass: &'a [f64],
     constrained: &'a [u8],
+    node_kind: &'a [u8],
     fixed: &'a [u8],
     prescribed: &'a [crate::boundary::Prescribed],
     prescribed_of: &'a [[u32; 3]],
@@ -565,9 +638,9 @@ impl NodeContext<'_> {
         parts[1] += before[0];
         parts[2] += before[1];
         parts[4] += before[2];
-        parts[6] += after[0];
-        parts[7] += after[1];
-        parts[9] += after[2];
+        parts[7] += after[0];
+        parts[8] += after[1];
+        parts[10] += after[2];
     }
 
     /// Energy parts of node i for the motion V^{n−½} → `v_next` with contact force `r`
@@ -575,7 +648,7 @@ impl NodeContext<'_> {
     #[inline(always)]
     fn energy_parts(&self, i: usize, v_next: &[f64; 3], r: &[f64; 3]) -> EnergyParts {
         let m = self.mass[i];
-        let mut p = [0.0; 11];
+        let mut p = [0.0; 13];
         for d in 0..3 {
             let vn = 0.5 * (self.v[i][d] + v_next[d]);
             p[0] += 0.5 * m * vn * vn;
@@ -590,14 +663,72 @@ impl NodeContext<'_> {
                 r[d],
                 self.f_ext[i][d] + m * self.gravity[d],
                 reaction,
+                0.0,
             ];
             let before = 0.5 * self.dt * self.v[i][d];
             let after = 0.5 * self.dt * v_next[d];
-            for k in 0..5 {
+            for k in 0..6 {
                 p[1 + k] += forces[k] * before;
-                p[6 + k] += forces[k] * after;
+                p[7 + k] += forces[k] * after;
             }
         }
         p
+    }
+
+    /// Predictor of boundary node i (slot b of `bs`) with contact force `r`: the leapfrog
+    /// with the boundary's explicit forces S_b − K_b Uⁿ and its centred dashpot
+    /// (boundary::centred_dashpot), fixed and prescribed DOFs imposed. Returns U^{n+1},
+    /// V^{n+½} and the energy parts (the boundary's source S_b books as input, the spring
+    /// and dashpot forces of the body on the boundary as boundary work).
+    fn boundary_node(
+        &self,
+        i: usize,
+        bs: &crate::boundary::BoundarySystem,
+        b: usize,
+        r: &[f64; 3],
+    ) -> ([f64; 3], [f64; 3], EnergyParts) {
+        let dt = self.dt;
+        let m = self.mass[i];
+        let (u, v) = (self.u[i], self.v[i]);
+        let source = bs.source(b);
+        let ku = bs.spring[b] * nalgebra::Vector3::from(u);
+        let mut force = [0.0; 3];
+        let mut v_constrained = [0.0; 3];
+        for d in 0..3 {
+            force[d] = self.applied_force(i, d, r) + source[d] - ku[d];
+            if self.constrained[i] & (1 << d) != 0 && self.fixed[i] & (1 << d) == 0 {
+                let p = &self.prescribed[self.prescribed_of[i][d] as usize];
+                v_constrained[d] = p.half_step_velocity(self.t, dt, u[d]);
+            }
+        }
+        let update = bs.update(b);
+        let vn = update.half_step_velocity(v, force, v_constrained, dt);
+        let fd = update.dashpot_force(v, vn, dt);
+        let un: [f64; 3] = std::array::from_fn(|d| u[d] + dt * vn[d]);
+        let mut p = [0.0; 13];
+        for d in 0..3 {
+            let vm = 0.5 * (v[d] + vn[d]);
+            p[0] += 0.5 * m * vm * vm;
+            let reaction = if self.constrained[i] & (1 << d) != 0 {
+                m * (vn[d] - v[d]) / dt - force[d] - fd[d]
+            } else {
+                0.0
+            };
+            let forces = [
+                self.f_int[i][d],
+                self.f_damp[i][d] + self.alpha * m * v[d],
+                r[d],
+                self.f_ext[i][d] + m * self.gravity[d],
+                reaction + source[d],
+                ku[d] - fd[d],
+            ];
+            let before = 0.5 * dt * v[d];
+            let after = 0.5 * dt * vn[d];
+            for k in 0..6 {
+                p[1 + k] += forces[k] * before;
+                p[7 + k] += forces[k] * after;
+            }
+        }
+        (un, vn, p)
     }
 }

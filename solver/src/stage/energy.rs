@@ -22,20 +22,27 @@ pub struct Energies {
     pub contact: f64,
     /// Work of external loads (nodal loads, gravity).
     pub external: f64,
-    /// Work of the reactions at prescribed DOFs (input motion).
+    /// Work of the reactions at prescribed DOFs (input motion) and of the equivalent
+    /// seismic forces of the boundaries (free-field tractions and sources).
     pub input: f64,
+    /// Work absorbed by the absorbing boundaries' dashpots and springs.
+    pub boundary: f64,
     /// Kinetic energy at the start.
     pub initial_kinetic: f64,
-    /// Running trapezoidal sums of the five work categories up to the last completed
-    /// interval (internal, damping, contact, external, input).
+    /// Running trapezoidal sums of the work categories up to the last completed
+    /// interval (internal, damping, contact, external, input, boundary).
     #[serde(skip)]
-    pub accumulated: [f64; 5],
+    pub accumulated: [f64; N_WORK],
 }
 
+/// Number of work categories: internal, damping, contact, external, input, boundary.
+pub const N_WORK: usize = 6;
+
 impl Energies {
-    /// Balance residual: kinetic + internal + damping + contact − external − input − initial.
+    /// Balance residual: kinetic + internal + damping + contact + boundary − external −
+    /// input − initial.
     pub fn residual(&self) -> f64 {
-        self.kinetic + self.internal + self.damping + self.contact
+        self.kinetic + self.internal + self.damping + self.contact + self.boundary
             - self.external
             - self.input
             - self.initial_kinetic
@@ -50,6 +57,7 @@ impl Energies {
             self.contact,
             self.external,
             self.input,
+            self.boundary,
             self.initial_kinetic,
         ]
         .iter()
@@ -61,20 +69,21 @@ impl Energies {
     pub(crate) fn advance(&mut self, parts: &EnergyParts, first_step: bool) {
         if first_step {
             // The interval before t⁰ does not exist: start the sums at −½F⁰·ΔU^{−½}.
-            for k in 0..5 {
+            for k in 0..N_WORK {
                 self.accumulated[k] = -parts[1 + k];
             }
             self.initial_kinetic = parts[0];
         }
-        let now: [f64; 5] = std::array::from_fn(|k| self.accumulated[k] + parts[1 + k]);
+        let now: [f64; N_WORK] = std::array::from_fn(|k| self.accumulated[k] + parts[1 + k]);
         self.kinetic = parts[0];
         self.internal = now[0];
         self.damping = now[1];
         self.contact = -now[2];
         self.external = now[3];
         self.input = now[4];
-        for k in 0..5 {
-            self.accumulated[k] = now[k] + parts[6 + k];
+        self.boundary = now[5];
+        for k in 0..N_WORK {
+            self.accumulated[k] = now[k] + parts[1 + N_WORK + k];
         }
     }
 
@@ -90,5 +99,8 @@ impl Energies {
 }
 
 /// Per-node sums gathered in one pass: kinetic at tⁿ, then for internal, damping, contact,
-/// external and input work ½ Fⁿ·Δt V^{n−½} (indices 1–5) and ½ Fⁿ·Δt V^{n+½} (6–10).
-pub(crate) type EnergyParts = [f64; 11];
+/// external, input and boundary work ½ Fⁿ·Δt V^{n−½} (indices 1–6) and ½ Fⁿ·Δt V^{n+½}
+/// (7–12). The force of each category is the one that does positive work when energy
+/// enters that account: the force on the body for contact, external and input, the force
+/// of the body on the element / damper / boundary for internal, damping and boundary.
+pub(crate) type EnergyParts = [f64; 1 + 2 * N_WORK];

@@ -11,6 +11,7 @@ pub mod convergence_w01;
 pub mod energy_conservation;
 pub mod patch_test;
 pub mod w01_wave_pulses;
+pub mod w02_absorbing;
 pub mod w05_bar_impact;
 pub mod w06_incline;
 pub mod w07_newmark_block;
@@ -35,6 +36,10 @@ pub fn all() -> Vec<Case> {
         Case {
             id: "W1-conv",
             run: convergence_w01::run,
+        },
+        Case {
+            id: "W2",
+            run: w02_absorbing::run,
         },
         Case {
             id: "patch",

@@ -1,8 +1,12 @@
-//! `[boundary]`: fixed DOFs and prescribed motions.
+//! `[boundary]` and `[seismic]`: fixed DOFs, prescribed motions, absorbing and free-field
+//! boundaries and the seismic input through them.
 
-use crate::boundary::Prescribed;
-use crate::case::schema::BoundarySection;
+use std::collections::BTreeMap;
+
+use crate::boundary::{BoundaryInputs, BoundarySystem, Prescribed};
+use crate::case::schema::{BoundarySection, CaseFile};
 use crate::error::{DcfmError, Result};
+use crate::material::Material;
 use crate::model::Model;
 
 use super::checks::{dof_mask, nodes_of};
@@ -53,5 +57,23 @@ pub(super) fn build_boundary(
                 )
             })?;
     }
+    Ok(())
+}
+
+/// Absorbing and free-field boundaries and the seismic input (after the constraints and
+/// the damping, which the boundaries' per-node updates use).
+pub(super) fn build_absorbing(
+    model: &mut Model,
+    file: &CaseFile,
+    materials: &BTreeMap<String, Material>,
+    label: &str,
+) -> Result<()> {
+    let inputs = BoundaryInputs {
+        absorbing: &file.boundary.absorbing,
+        free_field: file.boundary.free_field.as_ref(),
+        seismic: file.seismic.as_ref(),
+        materials,
+    };
+    model.boundaries = BoundarySystem::build(model, &inputs, label)?;
     Ok(())
 }

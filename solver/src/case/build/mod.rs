@@ -2,7 +2,7 @@
 //!
 //! One function per case section, one file per section; [`build`] calls them in the
 //! order the sections depend on each other (mesh → materials → model → interfaces →
-//! boundaries → loads → outputs → time step).
+//! constraints → loads → absorbing boundaries and seismic input → outputs → time step).
 
 mod boundary;
 mod checks;
@@ -66,6 +66,7 @@ fn build(file: CaseFile, label: &str, dir: &Path) -> Result<Case> {
     loads::build_loads(&mut model, &file.loads, label)?;
     loads::build_damping(&mut model, &file.damping, label)?;
     loads::build_initial(&mut model, &file.initial, label)?;
+    boundary::build_absorbing(&mut model, &file, &materials, label)?;
     output::check_output(&model, &file.output, label)?;
     let dt = model
         .time_step(file.time.dt, file.time.safety)

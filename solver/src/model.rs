@@ -116,7 +116,10 @@ pub struct Model {
     pub constraints: Constraints,
     pub nodal_loads: Vec<NodalLoad>,
     pub gravity: Option<Gravity>,
+    /// Rayleigh damping of every region without its own.
     pub damping: Rayleigh,
+    /// Regions with their own Rayleigh damping (by region name).
+    pub region_damping: std::collections::BTreeMap<String, Rayleigh>,
     /// Initial velocities: (nodes, value).
     pub initial_velocity: Vec<(Vec<u32>, [f64; 3])>,
     pub stable: StableStep,
@@ -211,6 +214,7 @@ impl Model {
             nodal_loads: Vec::new(),
             gravity: None,
             damping: Rayleigh::default(),
+            region_damping: std::collections::BTreeMap::new(),
             initial_velocity: Vec::new(),
             stable,
         })
@@ -235,6 +239,53 @@ impl Model {
     ) -> (crate::material::Voigt, crate::material::Voigt) {
         let (g, le) = self.element_location[e];
         self.groups[g as usize].strain_stress_of(le as usize, u)
+    }
+
+    /// Rayleigh damping of element group `g` (its region's own, else the model's).
+    pub fn group_damping(&self, g: usize) -> Rayleigh {
+        self.region_damping
+            .get(&self.groups[g].name)
+            .copied()
+            .unwrap_or(self.damping)
+    }
+
+    /// Rayleigh damping of global element `e`.
+    pub fn element_damping(&self, e: usize) -> Rayleigh {
+        self.group_damping(self.element_location[e].0 as usize)
+    }
+
+    /// Largest α and largest β over the groups (for the stable step).
+    pub fn max_damping(&self) -> (f64, f64) {
+        (0..self.groups.len())
+            .map(|g| self.group_damping(g))
+            .fold((self.damping.alpha, self.damping.beta), |(a, b), d| {
+                (a.max(d.alpha), b.max(d.beta))
+            })
+    }
+
+    /// α of every node when regions differ in α: Σ_e α_e M_e,a / M_a (the nodal mass
+    /// proportional damping of C = Σ_e α_e M_e); `None` when every region has the same α.
+    pub fn node_alpha(&self) -> Option<Vec<f64>> {
+        let uniform =
+            (0..self.groups.len()).all(|g| self.group_damping(g).alpha == self.damping.alpha);
+        if uniform {
+            return None;
+        }
+        let mut am = vec![0.0; self.mesh.n_nodes()];
+        for (gi, g) in self.groups.iter().enumerate() {
+            let alpha = self.group_damping(gi).alpha;
+            let rho = g.material.density();
+            for &e in &g.elements {
+                let m = crate::element::lumped_mass::element_masses(
+                    &self.mesh.element_coords(e as usize),
+                    rho,
+                );
+                for (a, &n) in self.mesh.elements[e as usize].iter().enumerate() {
+                    am[n as usize] += alpha * m[a];
+                }
+            }
+        }
+        Some(am.iter().zip(&self.mass).map(|(a, m)| a / m).collect())
     }
 
     /// Material of global element `e`.
@@ -317,7 +368,8 @@ impl Model {
     pub fn critical_step_with_damping(&self) -> f64 {
         let dt = self.critical_step();
         let omega = 2.0 / dt;
-        let xi = 0.5 * (self.damping.alpha / omega + self.damping.beta * omega);
+        let (alpha, beta) = self.max_damping();
+        let xi = 0.5 * (alpha / omega + beta * omega);
         (2.0 / omega) * ((1.0 + xi * xi).sqrt() - xi)
     }
 }

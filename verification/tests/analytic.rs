@@ -47,7 +47,7 @@ fn every_case_is_tested_here() {
     let covered = [
         "W1", "patch", "energy", "W10", "W13", "W1-conv", "W5", "W6", "W7", "W8", "W9", "bonded",
         "drop", // boundaries.rs:
-        "W2",
+        "W2", "W3", "W14",
     ];
     for id in ids {
         assert!(

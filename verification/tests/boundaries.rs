@@ -19,3 +19,13 @@ fn run_case(id: &str) {
 fn w02_absorbing_boundaries() {
     run_case("W2");
 }
+
+#[test]
+fn w03_site_response() {
+    run_case("W3");
+}
+
+#[test]
+fn w14_free_field() {
+    run_case("W14");
+}

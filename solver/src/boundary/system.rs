@@ -21,9 +21,13 @@ use nalgebra::Matrix3;
 use crate::boundary::absorbing::{AbsorbingKind, AbsorbingSpec, FaceCoefficients};
 use crate::boundary::centred_dashpot::CentredDashpotNode;
 use crate::boundary::face_tensors::face_node_integrals;
-use crate::boundary::free_field::column::{BaseDrive, Column, ColumnBase, ColumnElement};
-use crate::boundary::free_field::FreeFieldSection;
-use crate::boundary::seismic_input::{MotionDefinition, SeismicMotion, SeismicSection};
+use crate::boundary::free_field::column::{Column, ColumnBase, ColumnElement};
+use crate::boundary::free_field::sides::{
+    build_side, SideContext, Sides, WallDashpotDrive, WallTractionDrive,
+};
+use crate::boundary::free_field::wall::stress_dot;
+use crate::boundary::free_field::{ColumnSpec, FreeField, FreeFieldSection};
+use crate::boundary::seismic_input::{MotionDefinition, SeismicSection};
 use crate::error::{DcfmError, Result};
 use crate::material::{Elastic, Material};
 use crate::mesh::vertical_profile::{face_centroid, vertical_profile};
@@ -35,7 +39,7 @@ use crate::model::Model;
 enum Traction {
     /// The ground below the level (a base face, n = −z).
     Below,
-    /// The element above the level (a buried top face, n = +z).
+    /// The part of the column above the level (a buried top face): Column::force_from_above.
     Above,
 }
 
@@ -49,19 +53,6 @@ struct ColumnDrive {
     /// ∫φ dA of the node on these faces (m²).
     area: f64,
     traction: Traction,
-}
-
-/// The reference free-field column and the motion that drives it.
-#[derive(Clone, Debug)]
-struct ReferenceColumn {
-    levels: Vec<f64>,
-    elements: Vec<ColumnElement>,
-    base: ColumnBase,
-    motion: SeismicMotion,
-    /// Built by [`BoundarySystem::prepare`] (it needs Δt).
-    column: Option<Column>,
-    /// Level of the model's top (where the overburden starts).
-    model_top_level: usize,
 }
 
 /// What `dcfm check` prints about one boundary.
@@ -92,7 +83,9 @@ pub struct BoundarySystem {
     /// The centred-dashpot update of each node (after [`BoundarySystem::prepare`]).
     updates: Vec<CentredDashpotNode>,
     drives: Vec<ColumnDrive>,
-    reference: Option<ReferenceColumn>,
+    wall_dashpots: Vec<WallDashpotDrive>,
+    wall_tractions: Vec<WallTractionDrive>,
+    free_field: Option<FreeField>,
     /// What each boundary is, for reports.
     pub reports: Vec<BoundaryReport>,
 }
@@ -357,8 +350,10 @@ impl BoundarySystem {
                 ),
             });
         }
-        // The reference free-field column and the drives of the seismic input.
-        let mut reference = None;
+        // The free field (reference column, side walls and their columns) and the drives
+        // of the seismic input.
+        let mut free_field: Option<FreeField> = None;
+        let mut sides = Sides::default();
         if let Some(seismic) = inputs.seismic {
             seismic.motion().validate(label, "seismic")?;
             if input_faces.is_empty() {
@@ -398,7 +393,7 @@ impl BoundarySystem {
                     format!("all input faces in one horizontal plane (first at z = {z_base})"),
                 ));
             }
-            let column = reference_profile(
+            let (spec, model_top_level, base) = reference_profile(
                 model,
                 seismic,
                 &input_faces,
@@ -420,7 +415,7 @@ impl BoundarySystem {
                     ));
                 }
                 let faces = outside_faces(mesh, &top.names(), &outer, label, field)?;
-                let z_top = column.levels[column.model_top_level];
+                let z_top = spec.levels[model_top_level];
                 for &f in &faces {
                     if !horizontal(mesh, f, 1.0) || (face_centroid(mesh, f)[2] - z_top).abs() > tol
                     {
@@ -443,7 +438,7 @@ impl BoundarySystem {
                             .0 += c;
                         drives.push(ColumnDrive {
                             slot: n,
-                            level: column.model_top_level as u32,
+                            level: model_top_level as u32,
                             spring: Matrix3::zeros(),
                             dashpot: c,
                             area: ints[j].area,
@@ -474,25 +469,108 @@ impl BoundarySystem {
                         crate::boundary::MotionKind::Velocity => "velocity",
                         _ => "acceleration",
                     },
-                    column.levels.len(),
-                    column.levels[0],
-                    column.levels[column.levels.len() - 1]
+                    spec.levels.len(),
+                    spec.levels[0],
+                    spec.levels[spec.levels.len() - 1]
                 ),
             });
-            reference = Some(column);
-        } else if has_top {
+            // Free-field walls beside the vertical sides.
+            let side_sets = inputs.free_field.map_or(&[][..], |f| &f.sides[..]);
+            if !side_sets.is_empty() {
+                type PerArea = (Matrix3<f64>, Matrix3<f64>, f64);
+                let mut base_per_area: std::collections::HashMap<u32, PerArea> =
+                    std::collections::HashMap::new();
+                for d in drives.iter().filter(|d| d.traction == Traction::Below) {
+                    let e = base_per_area.entry(d.slot).or_insert((
+                        Matrix3::zeros(),
+                        Matrix3::zeros(),
+                        0.0,
+                    ));
+                    e.0 += d.spring;
+                    e.1 += d.dashpot;
+                    e.2 += d.area;
+                }
+                let base_per_area = base_per_area
+                    .into_iter()
+                    .map(|(n, (k, c, a))| (n, (k / a, c / a)))
+                    .collect();
+                let overburden: Vec<(f64, ColumnElement)> = spec.levels[model_top_level + 1..]
+                    .iter()
+                    .zip(&spec.elements[model_top_level..])
+                    .map(|(&z, e)| (z, *e))
+                    .collect();
+                let ctx = SideContext {
+                    base_per_area: &base_per_area,
+                    overburden: &overburden,
+                    z_base: spec.levels[0],
+                    z_top: spec.levels[model_top_level],
+                };
+                let mut columns_at = BTreeMap::new();
+                for (k, side) in side_sets.iter().enumerate() {
+                    let field = format!("boundary.free_field.sides[{k}]");
+                    let faces = outside_faces(mesh, &side.names(), &outer, label, &field)?;
+                    build_side(
+                        model,
+                        &side.names().join("+"),
+                        &faces,
+                        &ctx,
+                        &mut sides,
+                        1,
+                        &mut columns_at,
+                        tol,
+                    )
+                    .map_err(|msg| {
+                        DcfmError::invalid(label, &field, format!("{:?}", side.names()), msg)
+                    })?;
+                }
+                for &(n, c) in &sides.node_dashpots {
+                    per_node
+                        .entry(n)
+                        .or_insert((Matrix3::zeros(), Matrix3::zeros()))
+                        .0 += c;
+                }
+                reports.push(BoundaryReport {
+                    field: "boundary.free_field.sides".into(),
+                    description: format!(
+                        "{} free-field walls ({} wall elements), {} edge columns",
+                        sides.walls.len(),
+                        sides.walls.iter().map(|w| w.elements.len()).sum::<usize>(),
+                        sides.columns.len()
+                    ),
+                });
+            }
+            let mut specs = vec![spec];
+            specs.append(&mut sides.columns);
+            free_field = Some(FreeField {
+                specs,
+                columns: Vec::new(),
+                walls: std::mem::take(&mut sides.walls),
+                motion: seismic.motion(),
+                base,
+                model_top_level,
+            });
+        } else if has_top || inputs.free_field.is_some_and(|f| !f.sides.is_empty()) {
             return Err(DcfmError::invalid(
                 label,
-                "boundary.free_field.top",
+                "boundary.free_field",
                 "given",
-                "a [seismic] section (the free field it couples to)",
+                "a [seismic] section (the free field it couples to) with its input boundary",
             ));
         }
         let nodes: Vec<u32> = per_node.keys().copied().collect();
+        let slot_of = |n: u32| {
+            nodes
+                .binary_search(&n)
+                .expect("a drive's node is a boundary node") as u32
+        };
         for d in drives.iter_mut() {
-            d.slot = nodes
-                .binary_search(&d.slot)
-                .expect("a drive's node is a boundary node") as u32;
+            d.slot = slot_of(d.slot);
+        }
+        for d in sides.dashpots.iter_mut() {
+            d.main_node = slot_of(d.main_node);
+        }
+        for d in sides.tractions.iter_mut() {
+            d.main_node = slot_of(d.main_node);
         }
         let (dashpot, spring): (Vec<_>, Vec<_>) = per_node.into_values().unzip();
         let nb = nodes.len();
@@ -506,14 +584,16 @@ impl BoundarySystem {
             source: vec![[0.0; 3]; nb],
             updates: Vec::new(),
             drives,
-            reference,
+            wall_dashpots: sides.dashpots,
+            wall_tractions: sides.tractions,
+            free_field,
             reports,
         }))
     }
 
     /// Precompute the per-node updates for time step `dt` (masses and constrained DOFs
     /// final) and build the free-field column.
-    pub fn prepare(&mut self, dt: f64, mass: &[f64], constrained: &[u8], alpha: f64, beta: f64) {
+    pub fn prepare(&mut self, dt: f64, mass: &[f64], constrained: &[u8]) {
         self.updates = self
             .nodes
             .iter()
@@ -522,15 +602,8 @@ impl BoundarySystem {
                 CentredDashpotNode::new(mass[n as usize], *c, constrained[n as usize] & 0b111, dt)
             })
             .collect();
-        if let Some(r) = self.reference.as_mut() {
-            r.column = Some(Column::new(
-                r.levels.clone(),
-                r.elements.clone(),
-                r.base,
-                alpha,
-                beta,
-                dt,
-            ));
+        if let Some(ff) = self.free_field.as_mut() {
+            ff.prepare(dt);
         }
         self.refresh_constant_source();
     }
@@ -555,17 +628,11 @@ impl BoundarySystem {
     /// Step the free field to tⁿ⁺¹ and compute the sources S_b at tⁿ.
     pub fn begin_step(&mut self, t: f64, dt: f64) {
         self.source.copy_from_slice(&self.constant_source);
-        let Some(r) = self.reference.as_mut() else {
+        let Some(ff) = self.free_field.as_mut() else {
             return;
         };
-        let Some(col) = r.column.as_mut() else {
-            return;
-        };
-        let drive = match r.base {
-            ColumnBase::Transmitting => BaseDrive::Incident(r.motion.velocity(t)),
-            ColumnBase::Rigid => BaseDrive::HalfStepVelocity(r.motion.half_step_velocity(t, dt)),
-        };
-        col.step(drive, dt);
+        ff.step(t, dt);
+        let col = &ff.columns[0];
         for d in &self.drives {
             let l = d.level as usize;
             let u = nalgebra::Vector3::from(col.displacement(l));
@@ -576,15 +643,30 @@ impl BoundarySystem {
                     let s = col.stress(l - 1);
                     [-s[5], -s[4], -s[2]]
                 }
-                Traction::Above => {
-                    let s = col.stress(l);
-                    [s[5], s[4], s[2]]
-                }
+                Traction::Above => col.force_from_above(l),
             };
             let f = d.spring * u + d.dashpot * v;
             let s = &mut self.source[d.slot as usize];
             for k in 0..3 {
                 s[k] += f[k] + d.area * t[k];
+            }
+        }
+        for d in &self.wall_dashpots {
+            let v = ff.walls[d.wall as usize].velocity(d.wall_node as usize);
+            let f = d.dashpot * nalgebra::Vector3::from(v);
+            let s = &mut self.source[d.main_node as usize];
+            for k in 0..3 {
+                s[k] += f[k];
+            }
+        }
+        for d in &self.wall_tractions {
+            let w = &ff.walls[d.wall as usize];
+            let s = &mut self.source[d.main_node as usize];
+            for (q, a) in d.weights.iter().enumerate() {
+                let t = stress_dot(&w.stress(d.element as usize, q), a);
+                for k in 0..3 {
+                    s[k] += t[k];
+                }
             }
         }
     }
@@ -615,26 +697,26 @@ impl BoundarySystem {
             .fold(0.0, f64::max)
     }
 
-    /// Critical step of the free-field grids (1D columns: min h/c_p), if any.
+    /// Critical step of the free-field grids (columns: min h/c_p; walls: 2/ω_max), if any.
     pub fn free_field_critical_step(&self) -> Option<f64> {
-        self.reference.as_ref().map(|r| {
-            r.elements
-                .iter()
-                .map(|e| e.height / e.material.p_wave_speed())
-                .fold(f64::INFINITY, f64::min)
-        })
+        self.free_field.as_ref().map(FreeField::critical_step)
     }
 
     /// Velocity of the reference free-field column at the ground surface (its top) at tⁿ
     /// of the last step, if there is one.
     pub fn free_field_surface_velocity(&self) -> Option<[f64; 3]> {
-        let c = self.reference.as_ref()?.column.as_ref()?;
+        let c = self.reference_column()?;
         Some(c.velocity(c.n_levels() - 1))
     }
 
-    /// The reference column's levels and its velocity at each at tⁿ (for histories and checks).
+    /// The reference free-field column (after [`BoundarySystem::prepare`]).
     pub fn reference_column(&self) -> Option<&Column> {
-        self.reference.as_ref()?.column.as_ref()
+        self.free_field.as_ref()?.reference()
+    }
+
+    /// The free field, if any.
+    pub fn free_field(&self) -> Option<&FreeField> {
+        self.free_field.as_ref()
     }
 
     /// State for checkpoints.
@@ -643,8 +725,8 @@ impl BoundarySystem {
         for x in self.u_static.iter().chain(&self.f_static) {
             out.extend(x);
         }
-        if let Some(c) = self.reference.as_ref().and_then(|r| r.column.as_ref()) {
-            c.state_values(&mut out);
+        if let Some(ff) = &self.free_field {
+            ff.state_values(&mut out);
         }
         out
     }
@@ -667,9 +749,9 @@ impl BoundarySystem {
         }
         self.refresh_constant_source();
         let rest = &values[6 * nb..];
-        match self.reference.as_mut().and_then(|r| r.column.as_mut()) {
-            Some(c) => {
-                let used = c.restore_state(rest)?;
+        match self.free_field.as_mut() {
+            Some(ff) => {
+                let used = ff.restore_state(rest)?;
                 if used != rest.len() {
                     return Err(format!(
                         "boundary state has {} values too many for the case's free field",
@@ -696,7 +778,7 @@ fn reference_profile(
     hi: [f64; 3],
     materials: &BTreeMap<String, Material>,
     label: &str,
-) -> Result<ReferenceColumn> {
+) -> Result<(ColumnSpec, usize, ColumnBase)> {
     let mesh = &model.mesh;
     let at = seismic.profile_at.unwrap_or([lo[0], lo[1]]);
     if !at.iter().all(|c| c.is_finite()) {
@@ -717,6 +799,7 @@ fn reference_profile(
             d(a).total_cmp(&d(b))
         })
         .expect("at least one input face");
+    let [profile_x, profile_y, _] = face_centroid(mesh, start);
     let profile = vertical_profile(mesh, start)
         .map_err(|msg| DcfmError::invalid(label, "seismic.profile_at", format!("{at:?}"), msg))?;
     let top_reached = profile.last().map_or(lo[2], |p| p.z_top);
@@ -738,9 +821,12 @@ fn reference_profile(
     let mut elements = Vec::new();
     for p in &profile {
         levels.push(p.z_top);
+        let d = model.element_damping(p.element as usize);
         elements.push(ColumnElement {
             height: p.z_top - p.z_bottom,
             material: *model.element_material(p.element as usize).elastic(),
+            alpha: d.alpha,
+            beta: d.beta,
         });
     }
     let model_top_level = levels.len() - 1;
@@ -786,6 +872,8 @@ fn reference_profile(
             elements.push(ColumnElement {
                 height: h,
                 material,
+                alpha: model.damping.alpha,
+                beta: model.damping.beta,
             });
         }
     }
@@ -793,12 +881,10 @@ fn reference_profile(
         MotionDefinition::Within => ColumnBase::Rigid,
         MotionDefinition::Incident | MotionDefinition::Outcrop => ColumnBase::Transmitting,
     };
-    Ok(ReferenceColumn {
+    let spec = ColumnSpec {
+        at: [profile_x, profile_y],
         levels,
         elements,
-        base,
-        motion: seismic.motion(),
-        column: None,
-        model_top_level,
-    })
+    };
+    Ok((spec, model_top_level, base))
 }

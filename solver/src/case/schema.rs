@@ -184,6 +184,9 @@ pub struct RegionSection {
     /// Hourglass coefficient ε_hg (one-point).
     #[serde(default = "default_hourglass")]
     pub hourglass: f64,
+    /// The region's own Rayleigh damping (default: `[damping]`).
+    #[serde(default)]
+    pub damping: Option<DampingSection>,
 }
 
 fn default_hourglass() -> f64 {

@@ -77,6 +77,10 @@ pub struct Simulation {
     node_kind: Vec<u8>,
     /// Slot of each node in the boundary system (u32::MAX: none).
     boundary_slot: Vec<u32>,
+    /// Stiffness-proportional damping β of each element group.
+    group_beta: Vec<f64>,
+    /// Mass-proportional damping α of each node, when the regions differ in α.
+    node_alpha: Option<Vec<f64>>,
     chunks: Vec<ChunkResult>,
     /// The next step is the first of the energy account (t⁰ is set there).
     energy_origin_pending: bool,
@@ -133,15 +137,20 @@ impl Simulation {
         let n_chunks = n.div_ceil(NODE_CHUNK);
         let mut node_kind = model.constraints.constrained.clone();
         let mut boundary_slot = vec![u32::MAX; n];
-        let (alpha, beta) = (model.damping.alpha, model.damping.beta);
+        let group_beta: Vec<f64> = (0..model.groups.len())
+            .map(|g| model.group_damping(g).beta)
+            .collect();
+        let node_alpha = model.node_alpha();
         if let Some(b) = model.boundaries.as_mut() {
-            b.prepare(dt, &model.mass, &model.constraints.constrained, alpha, beta);
+            b.prepare(dt, &model.mass, &model.constraints.constrained);
             for (slot, &i) in b.nodes.iter().enumerate() {
                 node_kind[i as usize] |= BOUNDARY_NODE;
                 boundary_slot[i as usize] = slot as u32;
             }
         }
         Self {
+            group_beta,
+            node_alpha,
             node_kind,
             boundary_slot,
             dt,
@@ -207,20 +216,20 @@ impl Simulation {
     /// into the internal-force buffer ([`Simulation::internal_force`]). Material states
     /// are written to their pending buffer, not committed.
     pub fn internal_forces(&mut self) {
-        let beta = self.model.damping.beta;
+        let any_beta = self.group_beta.iter().any(|&b| b > 0.0);
         self.f_int
             .par_iter_mut()
             .with_min_len(4096)
             .for_each(|f| *f = [0.0; 3]);
-        if beta > 0.0 {
+        if any_beta {
             self.f_damp
                 .par_iter_mut()
                 .with_min_len(4096)
                 .for_each(|f| *f = [0.0; 3]);
         }
-        let settings = ForceSettings { beta, dt: self.dt };
         for c in 0..self.model.n_colours {
-            for g in self.model.groups.iter_mut() {
+            for (g, &beta) in self.model.groups.iter_mut().zip(&self.group_beta) {
+                let settings = ForceSettings { beta, dt: self.dt };
                 g.add_colour_forces(
                     c,
                     &self.u,
@@ -280,6 +289,7 @@ impl Simulation {
             dt,
             t,
             alpha,
+            node_alpha: self.node_alpha.as_deref(),
             gravity,
             mass: &self.model.mass,
             inv_mass: &self.model.inv_mass,
@@ -552,6 +562,7 @@ struct NodeContext<'a> {
     dt: f64,
     t: f64,
     alpha: f64,
+    node_alpha: Option<&'a [f64]>,
     gravity: [f64; 3],
     mass: &'a [f64],
     inv_mass: &'a [f64],
@@ -568,6 +579,15 @@ struct NodeContext<'a> {
 }
 
 impl NodeContext<'_> {
+    /// Mass-proportional damping α of node i.
+    #[inline(always)]
+    fn alpha_at(&self, i: usize) -> f64 {
+        match self.node_alpha {
+            Some(a) => a[i],
+            None => self.alpha,
+        }
+    }
+
     /// Force on DOF d of node i except the reaction: Fⁿ + M g − f_int − f_damp − αM V^{n−½} + R.
     #[inline(always)]
     fn applied_force(&self, i: usize, d: usize, r: &[f64; 3]) -> f64 {
@@ -575,7 +595,7 @@ impl NodeContext<'_> {
         self.f_ext[i][d] + m * self.gravity[d]
             - self.f_int[i][d]
             - self.f_damp[i][d]
-            - self.alpha * m * self.v[i][d]
+            - self.alpha_at(i) * m * self.v[i][d]
             + r[d]
     }
 
@@ -612,14 +632,15 @@ impl NodeContext<'_> {
         let m = self.mass[i];
         let w = self.inv_mass[i];
         let (u, v) = (&self.u[i], &self.v[i]);
+        let alpha = self.alpha_at(i);
         let (fi, fd, fe) = (&self.f_int[i], &self.f_damp[i], &self.f_ext[i]);
         let mut kin = 0.0;
         let mut before = [0.0; 3];
         let mut after = [0.0; 3];
         for d in 0..3 {
             let ext = fe[d] + m * self.gravity[d];
-            let damp = fd[d] + self.alpha * m * v[d];
-            let force = ext - fi[d] - fd[d] - self.alpha * m * v[d];
+            let damp = fd[d] + alpha * m * v[d];
+            let force = ext - fi[d] - damp;
             let vd = v[d] + self.dt * force * w;
             v_next[d] = vd;
             u_next[d] = u[d] + self.dt * vd;
@@ -659,7 +680,7 @@ impl NodeContext<'_> {
             };
             let forces = [
                 self.f_int[i][d],
-                self.f_damp[i][d] + self.alpha * m * self.v[i][d],
+                self.f_damp[i][d] + self.alpha_at(i) * m * self.v[i][d],
                 r[d],
                 self.f_ext[i][d] + m * self.gravity[d],
                 reaction,
@@ -716,7 +737,7 @@ impl NodeContext<'_> {
             };
             let forces = [
                 self.f_int[i][d],
-                self.f_damp[i][d] + self.alpha * m * v[d],
+                self.f_damp[i][d] + self.alpha_at(i) * m * v[d],
                 r[d],
                 self.f_ext[i][d] + m * self.gravity[d],
                 reaction + source[d],

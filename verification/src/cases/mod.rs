@@ -12,6 +12,7 @@ pub mod energy_conservation;
 pub mod patch_test;
 pub mod w01_wave_pulses;
 pub mod w02_absorbing;
+pub mod w03_site_response;
 pub mod w05_bar_impact;
 pub mod w06_incline;
 pub mod w07_newmark_block;
@@ -19,6 +20,7 @@ pub mod w08_cohesive_bond;
 pub mod w09_pair_step;
 pub mod w10_plastic_damage;
 pub mod w13_stable_step;
+pub mod w14_free_field;
 
 /// A registered case: name and the function that runs it.
 pub struct Case {
@@ -40,6 +42,14 @@ pub fn all() -> Vec<Case> {
         Case {
             id: "W2",
             run: w02_absorbing::run,
+        },
+        Case {
+            id: "W3",
+            run: w03_site_response::run,
+        },
+        Case {
+            id: "W14",
+            run: w14_free_field::run,
         },
         Case {
             id: "patch",

@@ -29,6 +29,9 @@ pub struct ColumnElement {
     pub height: f64,
     /// Material (elastic constants, density).
     pub material: Elastic,
+    /// Rayleigh damping of the element: mass-proportional α (1/s), stiffness-proportional β (s).
+    pub alpha: f64,
+    pub beta: f64,
 }
 
 /// How the base of a column is driven.
@@ -62,8 +65,10 @@ pub struct Column {
     /// Base dashpot per unit area (ρc_s, ρc_s, ρc_p of the deepest layer).
     base_dashpot: [f64; 3],
     base_node: CentredDashpotNode,
-    alpha: f64,
-    beta: f64,
+    /// Mass-proportional α of each level: Σ_e α_e M_e / M.
+    alpha: Vec<f64>,
+    /// Any element with β > 0.
+    any_beta: bool,
     /// Uⁿ.
     pub u: Vec<[f64; 3]>,
     /// V^{n−½} (before the step), V^{n+½} after.
@@ -74,6 +79,11 @@ pub struct Column {
     u_prev: Vec<[f64; 3]>,
     /// Stress of every element at tⁿ of the last step (Voigt).
     stress: Vec<Voigt>,
+    /// Stiffness-proportional damping traction β (σ_zx, σ_yz, σ_zz)(V^{n−½}) of every
+    /// element at tⁿ of the last step.
+    damping_traction: Vec<[f64; 3]>,
+    /// Δt of the last step.
+    dt: f64,
     /// Force per unit area that the ground below exerts on the base level at tⁿ.
     base_traction: [f64; 3],
     /// Scratch: internal and damping forces per level.
@@ -84,16 +94,9 @@ pub struct Column {
 }
 
 impl Column {
-    /// A column with the given levels (increasing) and elements (one fewer), Rayleigh
-    /// coefficients α, β, base condition and time step.
-    pub fn new(
-        levels: Vec<f64>,
-        elements: Vec<ColumnElement>,
-        base: ColumnBase,
-        alpha: f64,
-        beta: f64,
-        dt: f64,
-    ) -> Self {
+    /// A column with the given levels (increasing) and elements (one fewer), base
+    /// condition and time step.
+    pub fn new(levels: Vec<f64>, elements: Vec<ColumnElement>, base: ColumnBase, dt: f64) -> Self {
         assert_eq!(
             levels.len(),
             elements.len() + 1,
@@ -101,11 +104,18 @@ impl Column {
         );
         let n = levels.len();
         let mut mass = vec![0.0; n];
+        let mut alpha = vec![0.0; n];
         for (e, el) in elements.iter().enumerate() {
             let m = 0.5 * el.material.density * el.height;
             mass[e] += m;
             mass[e + 1] += m;
+            alpha[e] += el.alpha * m;
+            alpha[e + 1] += el.alpha * m;
         }
+        for (a, m) in alpha.iter_mut().zip(&mass) {
+            *a /= m;
+        }
+        let any_beta = elements.iter().any(|e| e.beta > 0.0);
         let half_space = elements[0].material;
         let (rcs, rcp) = (
             half_space.density * half_space.s_wave_speed(),
@@ -125,12 +135,14 @@ impl Column {
             base,
             base_dashpot,
             alpha,
-            beta,
+            any_beta,
             u: vec![[0.0; 3]; n],
             v: vec![[0.0; 3]; n],
             v_prev: vec![[0.0; 3]; n],
             u_prev: vec![[0.0; 3]; n],
             stress: vec![[0.0; 6]; n - 1],
+            damping_traction: vec![[0.0; 3]; n - 1],
+            dt,
             base_traction: [0.0; 3],
             f_int: vec![[0.0; 3]; n],
             f_damp: vec![[0.0; 3]; n],
@@ -196,12 +208,14 @@ impl Column {
                 self.f_int[e + 1][d] += t[d];
                 self.f_int[e][d] -= t[d];
             }
-            if self.beta > 0.0 {
+            let beta = self.elements[e].beta;
+            if self.any_beta && beta > 0.0 {
                 let sd = self.element_stress(e, &self.v);
-                let td = [sd[5], sd[4], sd[2]];
+                let td = [beta * sd[5], beta * sd[4], beta * sd[2]];
+                self.damping_traction[e] = td;
                 for d in 0..3 {
-                    self.f_damp[e + 1][d] += self.beta * td[d];
-                    self.f_damp[e][d] -= self.beta * td[d];
+                    self.f_damp[e + 1][d] += td[d];
+                    self.f_damp[e][d] -= td[d];
                 }
             }
         }
@@ -210,7 +224,7 @@ impl Column {
         for l in 0..n {
             let m = self.mass[l];
             let force: [f64; 3] = std::array::from_fn(|d| {
-                -self.f_int[l][d] - self.f_damp[l][d] - self.alpha * m * self.v_prev[l][d]
+                -self.f_int[l][d] - self.f_damp[l][d] - self.alpha[l] * m * self.v_prev[l][d]
             });
             let vn = if l == 0 {
                 match drive {
@@ -267,6 +281,28 @@ impl Column {
     #[inline]
     pub fn base_traction(&self) -> [f64; 3] {
         self.base_traction
+    }
+
+    /// Force per unit area that the part of the column above level `l` exerts on the part
+    /// below, at tⁿ of the last step, in the discrete system: the traction of the element
+    /// above (with its stiffness-proportional damping) less the inertia and mass damping
+    /// of the half of its mass lumped at level l,
+    /// F = t_l + β t_d,l − M_a (Aⁿ + α_a V^{n−½}), M_a = ½ ρ_a h_a.
+    /// A grid that ends at level l and takes this force follows the column exactly
+    /// (a top face below the ground surface).
+    pub fn force_from_above(&self, l: usize) -> [f64; 3] {
+        if l + 1 >= self.levels.len() {
+            return [0.0; 3];
+        }
+        let el = &self.elements[l];
+        let ma = 0.5 * el.material.density * el.height;
+        let s = self.stress[l];
+        let t = [s[5], s[4], s[2]];
+        let td = self.damping_traction[l];
+        std::array::from_fn(|d| {
+            let a = (self.v[l][d] - self.v_prev[l][d]) / self.dt;
+            t[d] + td[d] - ma * (a + el.alpha * self.v_prev[l][d])
+        })
     }
 
     /// Energy per unit area at tⁿ of the last step: ½ Σ M |Vⁿ|² + ½ Σ σ:ε h (J/m²).
@@ -339,10 +375,12 @@ mod tests {
             ColumnElement {
                 height: h,
                 material: rock(),
+                alpha: 0.0,
+                beta: 0.0,
             };
             n
         ];
-        Column::new(levels, elements, base, 0.0, 0.0, dt)
+        Column::new(levels, elements, base, dt)
     }
 
     /// An incident S half-sine (v0 0.1 m/s, T 0.02 s) doubles at the free surface (W1:

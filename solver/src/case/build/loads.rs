@@ -1,7 +1,7 @@
 //! `[loads]`, `[damping]` and `[initial]`: nodal loads, gravity, Rayleigh damping and
 //! initial velocities.
 
-use crate::case::schema::{DampingSection, InitialSection, LoadSection};
+use crate::case::schema::{DampingSection, InitialSection, LoadSection, RegionSection};
 use crate::error::{DcfmError, Result};
 use crate::load::{Gravity, NodalLoad, TimeFunction};
 use crate::model::{Model, Rayleigh};
@@ -35,26 +35,38 @@ pub(super) fn build_loads(model: &mut Model, section: &LoadSection, label: &str)
     Ok(())
 }
 
-/// Rayleigh coefficients of `[damping]`.
-pub(super) fn build_damping(
-    model: &mut Model,
-    section: &DampingSection,
-    label: &str,
-) -> Result<()> {
+/// Checked Rayleigh coefficients of a damping table at `field`.
+fn rayleigh(section: &DampingSection, label: &str, field: &str) -> Result<Rayleigh> {
     for (name, v) in [("alpha", section.alpha), ("beta", section.beta)] {
         if !(v.is_finite() && v >= 0.0) {
             return Err(DcfmError::invalid(
                 label,
-                format!("damping.{name}"),
+                format!("{field}.{name}"),
                 v,
                 "must be finite and ≥ 0",
             ));
         }
     }
-    model.damping = Rayleigh {
+    Ok(Rayleigh {
         alpha: section.alpha,
         beta: section.beta,
-    };
+    })
+}
+
+/// Rayleigh coefficients of `[damping]` and of the regions with their own.
+pub(super) fn build_damping(
+    model: &mut Model,
+    section: &DampingSection,
+    regions: &[RegionSection],
+    label: &str,
+) -> Result<()> {
+    model.damping = rayleigh(section, label, "damping")?;
+    for (k, r) in regions.iter().enumerate() {
+        if let Some(d) = &r.damping {
+            let own = rayleigh(d, label, &format!("regions[{k}].damping"))?;
+            model.region_damping.insert(r.name.clone(), own);
+        }
+    }
     Ok(())
 }
 

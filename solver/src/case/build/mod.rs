@@ -64,7 +64,7 @@ fn build(file: CaseFile, label: &str, dir: &Path) -> Result<Case> {
     }
     boundary::build_boundary(&mut model, &file.boundary, label)?;
     loads::build_loads(&mut model, &file.loads, label)?;
-    loads::build_damping(&mut model, &file.damping, label)?;
+    loads::build_damping(&mut model, &file.damping, &file.regions, label)?;
     loads::build_initial(&mut model, &file.initial, label)?;
     boundary::build_absorbing(&mut model, &file, &materials, label)?;
     output::check_output(&model, &file.output, label)?;

@@ -7,9 +7,11 @@
 
 pub mod box_generator;
 pub mod gmsh;
+pub mod gmsh_write;
 pub mod hex8_shape;
 mod model_mesh;
 mod node_merge;
+pub mod split;
 
 pub use box_generator::{BlockSpec, BoxMeshSpec};
 pub use model_mesh::{Face, Mesh, HEX8_FACES};

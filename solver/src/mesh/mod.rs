@@ -7,6 +7,7 @@
 
 pub mod box_generator;
 pub mod gmsh;
+pub mod generators;
 pub mod gmsh_write;
 pub mod hex8_shape;
 mod model_mesh;

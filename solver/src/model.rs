@@ -124,6 +124,8 @@ pub struct Model {
     pub element_location: Vec<(u32, u32)>,
     /// Contact interfaces (dynamic contact force method), if any.
     pub contact: Option<crate::contact::ContactSystem>,
+    /// Anchor bars superposed on their host elements, if any.
+    pub anchors: Option<crate::element::anchor_bar::AnchorBars>,
 }
 
 impl Model {
@@ -198,6 +200,7 @@ impl Model {
         let n = mesh.n_nodes();
         Ok(Self {
             contact: None,
+            anchors: None,
             element_location,
             mesh,
             groups,
@@ -283,6 +286,18 @@ impl Model {
             });
         }
         Ok(dt)
+    }
+
+    /// Fold a stiffness added on top of the elements (anchor bars, springs) into the
+    /// critical step: with ω²_extra a bound on the largest eigenvalue of M^{-1/2} K_extra
+    /// M^{-1/2}, Weyl's inequality bounds the model's ω²_max by ω²_elements + ω²_extra, so
+    /// the step becomes 2/√((2/Δt)² + ω²_extra).
+    pub fn include_extra_stiffness(&mut self, omega_squared: f64) {
+        if omega_squared > 0.0 && omega_squared.is_finite() {
+            let w = 2.0 / self.stable.critical;
+            self.stable.critical = 2.0 / (w * w + omega_squared).sqrt();
+            self.stable.length = self.stable.critical * self.stable.speed;
+        }
     }
 
     /// Critical step reduced by stiffness-proportional damping:

@@ -35,6 +35,9 @@ pub struct CaseFile {
     /// Contact interfaces (`[[interfaces]]`), see docs/contact.md.
     #[serde(default)]
     pub interfaces: Vec<crate::contact::InterfaceSpec>,
+    /// Anchor bars (`[anchors]`), see docs/anchors.md.
+    #[serde(default)]
+    pub anchors: crate::element::anchor_bar::AnchorSection,
 }
 
 /// `[time]`.

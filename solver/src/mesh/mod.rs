@@ -6,8 +6,8 @@
 //! functions, Jacobian checks) is part of the mesh; the element kernels build on it.
 
 pub mod box_generator;
-pub mod gmsh;
 pub mod generators;
+pub mod gmsh;
 pub mod gmsh_write;
 pub mod hex8_shape;
 mod model_mesh;

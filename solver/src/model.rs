@@ -129,6 +129,8 @@ pub struct Model {
     pub contact: Option<crate::contact::ContactSystem>,
     /// Absorbing and free-field boundaries and the seismic input, if any.
     pub boundaries: Option<crate::boundary::BoundarySystem>,
+    /// Anchor bars superposed on their host elements, if any.
+    pub anchors: Option<crate::element::anchor_bar::AnchorBars>,
 }
 
 impl Model {
@@ -204,6 +206,7 @@ impl Model {
         Ok(Self {
             contact: None,
             boundaries: None,
+            anchors: None,
             element_location,
             mesh,
             groups,
@@ -357,6 +360,18 @@ impl Model {
             }
         }
         dt
+    }
+
+    /// Fold a stiffness added on top of the elements (anchor bars, springs) into the
+    /// critical step: with ω²_extra a bound on the largest eigenvalue of M^{-1/2} K_extra
+    /// M^{-1/2}, Weyl's inequality bounds the model's ω²_max by ω²_elements + ω²_extra, so
+    /// the step becomes 2/√((2/Δt)² + ω²_extra).
+    pub fn include_extra_stiffness(&mut self, omega_squared: f64) {
+        if omega_squared > 0.0 && omega_squared.is_finite() {
+            let w = 2.0 / self.stable.critical;
+            self.stable.critical = 2.0 / (w * w + omega_squared).sqrt();
+            self.stable.length = self.stable.critical * self.stable.speed;
+        }
     }
 
     /// Critical step with Rayleigh damping C = αM + βK, both terms taking the lagged

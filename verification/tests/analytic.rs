@@ -37,6 +37,11 @@ fn w10_plastic_damage() {
 }
 
 #[test]
+fn w11_rock_bolt() {
+    run_case("W11");
+}
+
+#[test]
 fn w13_stable_step() {
     run_case("W13");
 }
@@ -45,8 +50,8 @@ fn w13_stable_step() {
 fn every_case_is_tested_here() {
     let ids: Vec<&str> = cases::all().iter().map(|c| c.id).collect();
     let covered = [
-        "W1", "patch", "energy", "W10", "W13", "W1-conv", "W5", "W6", "W7", "W8", "W9", "bonded",
-        "drop", // boundaries.rs:
+        "W1", "patch", "energy", "W10", "W11", "W13", "W1-conv", "W5", "W6", "W7", "W8", "W9",
+        "bonded", "drop", // boundaries.rs:
         "W2", "W3", "W14",
     ];
     for id in ids {

@@ -3,6 +3,7 @@
 //! ```text
 //! dcfm check CASE                       validate, print the model summary and the stable step
 //! dcfm run CASE [--out DIR] [--threads N] [--resume] [--quiet]
+//! dcfm mesh yingxiuwan [--variant full|ci] [--out DIR]
 //! ```
 
 use std::path::PathBuf;
@@ -50,6 +51,17 @@ enum Command {
         #[arg(long)]
         quiet: bool,
     },
+    /// Generate a model's mesh (Gmsh MSH 4.1) and its case file.
+    Mesh {
+        /// The model: "yingxiuwan".
+        model: String,
+        /// Mesh variant: "full" (≈ the paper's 171k hex8) or "ci" (≈ 10⁴ elements).
+        #[arg(long, default_value = "full")]
+        variant: String,
+        /// Output directory.
+        #[arg(long, default_value = "yingxiuwan")]
+        out: PathBuf,
+    },
 }
 
 /// Print a line to stdout, ignoring a closed pipe (`dcfm check x | head` must not panic).
@@ -69,6 +81,11 @@ macro_rules! esay {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
+        Command::Mesh {
+            model,
+            variant,
+            out,
+        } => dcfm_app::mesh_cmd::run_mesh_command(&model, &variant, &out),
         Command::Check { case } => match load_case(&case) {
             Ok(c) => {
                 let m = &c.model;

@@ -38,6 +38,9 @@ pub struct CaseFile {
     /// Seismic input motion (`[seismic]`), see docs/boundaries.md.
     #[serde(default)]
     pub seismic: Option<crate::boundary::seismic_input::SeismicSection>,
+    /// Anchor bars (`[anchors]`), see docs/anchors.md.
+    #[serde(default)]
+    pub anchors: crate::element::anchor_bar::AnchorSection,
 }
 
 /// `[time]`.

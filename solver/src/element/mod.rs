@@ -2,10 +2,13 @@
 //! (one-point with Flanagan–Belytschko hourglass control, full 2×2×2), lumped mass and
 //! the stable time step.
 
+pub mod anchor_bar;
+pub mod anchor_pattern;
 pub mod colouring;
 pub mod groups;
 pub mod hex8_full;
 pub mod hex8_uniform;
+pub mod host_locate;
 pub mod lumped_mass;
 pub mod stable_step;
 

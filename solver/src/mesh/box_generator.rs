@@ -6,6 +6,7 @@ use std::collections::BTreeMap;
 use serde::Deserialize;
 
 use crate::error::{DcfmError, Result};
+use crate::mesh::split::split_region_pairs;
 use crate::mesh::{merge_coincident_nodes, Face, Mesh};
 
 /// One structured block: an axis-aligned box divided into `divisions` hex8 elements.
@@ -119,6 +120,51 @@ impl BlockSpec {
 }
 
 impl BoxMeshSpec {
+    /// Two blocks whose boxes share a volume (not just a face) would be merged into a mesh
+    /// with interpenetrating elements and nodes merged at random: an error naming both,
+    /// unless their regions are kept apart by a `split` pair (then the overlap is the
+    /// user's intent, e.g. an initial interpenetration a contact test sets up).
+    fn check_overlaps(&self, file: &str) -> Result<()> {
+        let region = |b: &BlockSpec| b.region.clone().unwrap_or_else(|| b.name.clone());
+        for (i, a) in self.blocks.iter().enumerate() {
+            for (j, b) in self.blocks.iter().enumerate().skip(i + 1) {
+                let mut overlap = [0.0; 3];
+                for d in 0..3 {
+                    let lo = a.origin[d].max(b.origin[d]);
+                    let hi = (a.origin[d] + a.size[d]).min(b.origin[d] + b.size[d]);
+                    // Touching within the merge tolerance is not overlapping.
+                    let h =
+                        (a.size[d] / a.divisions[d] as f64).min(b.size[d] / b.divisions[d] as f64);
+                    overlap[d] = hi - lo;
+                    if overlap[d] <= self.merge_tolerance * h {
+                        overlap[d] = 0.0;
+                    }
+                }
+                if overlap.iter().all(|&o| o > 0.0) {
+                    let (ra, rb) = (region(a), region(b));
+                    let split = self
+                        .split
+                        .iter()
+                        .any(|[p, q]| (*p == ra && *q == rb) || (*p == rb && *q == ra));
+                    if !split {
+                        return Err(DcfmError::invalid(
+                            file,
+                            format!("mesh.blocks[{j}]"),
+                            format!("'{}'", b.name),
+                            format!(
+                                "overlaps block '{}' (mesh.blocks[{i}]) over {:.4} × {:.4} × {:.4} m: \
+                                 blocks may share faces, not volume (or split their regions \
+                                 [{ra}, {rb}] to keep two overlapping bodies apart)",
+                                a.name, overlap[0], overlap[1], overlap[2]
+                            ),
+                        ));
+                    }
+                }
+            }
+        }
+        Ok(())
+    }
+
     /// A single uniform block named `name` (region `name`).
     pub fn single(name: &str, origin: [f64; 3], size: [f64; 3], divisions: [usize; 3]) -> Self {
         Self {
@@ -169,6 +215,10 @@ impl BoxMeshSpec {
                 "must be in (0, 0.1)",
             ));
         }
+        for (bi, block) in self.blocks.iter().enumerate() {
+            block.validate(&format!("mesh.blocks[{bi}]"), file)?;
+        }
+        self.check_overlaps(file)?;
         let mut mesh = Mesh::default();
         let mut block_names = std::collections::BTreeSet::new();
         let mut min_h = f64::INFINITY;
@@ -297,109 +347,27 @@ impl BoxMeshSpec {
             .map(|(n, f)| (n.clone(), mesh.face_set_nodes(f)))
             .collect();
         mesh.node_sets.extend(node_sets);
-        for (si, [a, b]) in self.split.iter().enumerate() {
-            split_between_regions(&mut mesh, a, b).map_err(|msg| {
-                DcfmError::invalid(
-                    file,
-                    format!("mesh.split[{si}]"),
-                    format!("[{a}, {b}]"),
-                    msg,
-                )
-            })?;
-        }
+        split_region_pairs(&mut mesh, &self.split).map_err(|e| {
+            let [a, b] = &self.split[e.pair];
+            DcfmError::invalid(
+                file,
+                format!("mesh.split[{}]", e.pair),
+                format!("[{a}, {b}]"),
+                e.message,
+            )
+        })?;
         mesh.validate()?;
         Ok(mesh)
     }
 }
 
 /// Duplicate the nodes shared by regions `a` and `b`: elements of `b` get new copies.
-/// Creates face sets `a-b` (faces of `a` whose four nodes were shared) and `b-a`, and
-/// node sets of the same names. Errors (as text) if a region is unknown or nothing is shared.
+/// Creates face sets `a-b` (faces of `a` that coincide with a face of `b`) and `b-a`, and
+/// node sets of the same names. One pair of [`split_region_pairs`]; split several pairs in
+/// one call to that function (nodes on several interfaces). Errors (as text) if a region
+/// is unknown or the two share no face.
 pub fn split_between_regions(mesh: &mut Mesh, a: &str, b: &str) -> std::result::Result<(), String> {
-    let ra = mesh
-        .region_index(a)
-        .ok_or_else(|| format!("unknown region '{a}' (regions: {:?})", mesh.region_names))?
-        as u16;
-    let rb = mesh
-        .region_index(b)
-        .ok_or_else(|| format!("unknown region '{b}' (regions: {:?})", mesh.region_names))?
-        as u16;
-    if ra == rb {
-        return Err("the two regions must differ".into());
-    }
-    let n = mesh.n_nodes();
-    let mut touch = vec![0u8; n];
-    for (e, conn) in mesh.elements.iter().enumerate() {
-        let r = mesh.element_region[e];
-        let bit = if r == ra {
-            1
-        } else if r == rb {
-            2
-        } else {
-            0
-        };
-        for &a in conn {
-            touch[a as usize] |= bit;
-        }
-    }
-    let shared: Vec<bool> = touch.iter().map(|&t| t == 3).collect();
-    if !shared.iter().any(|&s| s) {
-        return Err(format!("regions '{a}' and '{b}' share no node"));
-    }
-    // Faces of a and b on the shared surface (all four nodes shared), before renumbering.
-    let faces_of = |region: u16, mesh: &Mesh| -> Vec<Face> {
-        let mut out = Vec::new();
-        for (e, conn) in mesh.elements.iter().enumerate() {
-            if mesh.element_region[e] != region {
-                continue;
-            }
-            for (l, local) in crate::mesh::HEX8_FACES.iter().enumerate() {
-                if local.iter().all(|&q| shared[conn[q] as usize]) {
-                    out.push(Face {
-                        element: e as u32,
-                        local: l as u8,
-                    });
-                }
-            }
-        }
-        out
-    };
-    let fa = faces_of(ra, mesh);
-    let fb = faces_of(rb, mesh);
-    let mut copy = vec![u32::MAX; n];
-    for (i, s) in shared.iter().enumerate() {
-        if *s {
-            copy[i] = mesh.coords.len() as u32;
-            mesh.coords.push(mesh.coords[i]);
-        }
-    }
-    for (e, conn) in mesh.elements.iter_mut().enumerate() {
-        if mesh.element_region[e] == rb {
-            for a in conn.iter_mut() {
-                if copy[*a as usize] != u32::MAX {
-                    *a = copy[*a as usize];
-                }
-            }
-        }
-    }
-    // Node sets that contained a shared node now also hold its copy when the set's faces
-    // belong to b: simplest faithful rule — rebuild face-derived node sets from face sets.
-    let rebuilt: Vec<(String, Vec<u32>)> = mesh
-        .face_sets
-        .iter()
-        .filter(|(name, _)| mesh.node_sets.contains_key(*name))
-        .map(|(name, f)| (name.clone(), mesh.face_set_nodes(f)))
-        .collect();
-    mesh.node_sets.extend(rebuilt);
-    let ab = format!("{a}-{b}");
-    let ba = format!("{b}-{a}");
-    let na = mesh.face_set_nodes(&fa);
-    let nb = mesh.face_set_nodes(&fb);
-    mesh.face_sets.insert(ab.clone(), fa);
-    mesh.face_sets.insert(ba.clone(), fb);
-    mesh.node_sets.insert(ab, na);
-    mesh.node_sets.insert(ba, nb);
-    Ok(())
+    split_region_pairs(mesh, &[[a.to_string(), b.to_string()]]).map_err(|e| e.message)
 }
 
 #[cfg(test)]
@@ -464,6 +432,43 @@ mod tests {
         let a = &m.node_sets["base-top"];
         let b = &m.node_sets["top-base"];
         assert!(a.iter().all(|n| !b.contains(n)));
+    }
+
+    #[test]
+    fn overlapping_blocks_are_named_touching_ones_are_not() {
+        let block = |name: &str, origin: [f64; 3]| BlockSpec {
+            name: name.into(),
+            region: None,
+            origin,
+            size: [1.0; 3],
+            divisions: [2, 2, 2],
+            grading: [1.0; 3],
+        };
+        let spec = |blocks: Vec<BlockSpec>, split: Vec<[String; 2]>| BoxMeshSpec {
+            blocks,
+            split,
+            merge_tolerance: 1e-6,
+        };
+        let touching = spec(
+            vec![block("a", [0.0; 3]), block("b", [1.0, 0.0, 0.0])],
+            vec![],
+        );
+        assert!(touching.build("t").is_ok());
+        let overlapping = spec(
+            vec![block("a", [0.0; 3]), block("b", [0.5, 0.25, 0.0])],
+            vec![],
+        );
+        let err = overlapping.build("c.toml").unwrap_err().to_string();
+        assert!(
+            err.contains("c.toml: mesh.blocks[1] = 'b'") && err.contains("overlaps block 'a'"),
+            "{err}"
+        );
+        assert!(err.contains("0.5000 × 0.7500 × 1.0000"), "{err}");
+        let intended = spec(
+            vec![block("a", [0.0; 3]), block("b", [0.5, 0.0, 0.0])],
+            vec![["a".into(), "b".into()]],
+        );
+        assert!(intended.check_overlaps("t").is_ok());
     }
 
     #[test]

@@ -7,11 +7,14 @@
 
 pub mod box_generator;
 pub mod face_geometry;
+pub mod generators;
 pub mod gmsh;
+pub mod gmsh_write;
 pub mod hex8_shape;
 mod model_mesh;
 mod node_merge;
 pub mod outer_faces;
+pub mod split;
 pub mod vertical_profile;
 
 pub use box_generator::{BlockSpec, BoxMeshSpec};

@@ -240,6 +240,10 @@ impl Simulation {
                 );
             }
         }
+        let model = &mut self.model;
+        if let Some(anchors) = model.anchors.as_mut() {
+            anchors.add_internal_forces(&model.mesh, &self.u, &mut self.f_int);
+        }
     }
 
     /// External nodal loads Fⁿ into `f_ext`.
@@ -493,6 +497,9 @@ impl Simulation {
         std::mem::swap(&mut self.v, &mut self.v_next);
         for g in self.model.groups.iter_mut() {
             g.states.commit();
+        }
+        if let Some(anchors) = self.model.anchors.as_mut() {
+            anchors.commit(dt, alpha);
         }
         self.step += 1;
         self.time = (self.step as f64) * dt;

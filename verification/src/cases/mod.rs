@@ -19,6 +19,7 @@ pub mod w07_newmark_block;
 pub mod w08_cohesive_bond;
 pub mod w09_pair_step;
 pub mod w10_plastic_damage;
+pub mod w11_rock_bolt;
 pub mod w13_stable_step;
 pub mod w14_free_field;
 
@@ -62,6 +63,10 @@ pub fn all() -> Vec<Case> {
         Case {
             id: "W10",
             run: w10_plastic_damage::run,
+        },
+        Case {
+            id: "W11",
+            run: w11_rock_bolt::run,
         },
         Case {
             id: "W13",

@@ -17,7 +17,7 @@ pub use atomic::{write_atomic, write_atomic_with};
 pub use histories::HistoryWriter;
 pub use pvd::{PvdCollection, PvdEntry};
 pub use summary::write_summary;
-pub use vtu::{write_vtu, VtuField};
+pub use vtu::{write_vtu, write_vtu_lines, VtuField};
 
 /// The display form of a path used in error messages.
 pub(crate) fn label(path: &std::path::Path) -> String {

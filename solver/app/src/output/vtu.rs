@@ -555,3 +555,182 @@ mod tests {
         assert!(err.contains("cell 1") && err.contains("99"), "{err}");
     }
 }
+
+/// VTK cell type of the 2-node line.
+pub const VTK_LINE: u8 = 3;
+
+/// Write a `.vtu` file of 2-node line cells (anchor-bar segments) over `points`, with one
+/// tuple per point in `point_fields` and per line in `cell_fields`, atomically (same
+/// encoding as [`write_vtu`]; Int64 indices).
+pub fn write_vtu_lines(
+    path: &Path,
+    points: &[[f64; 3]],
+    lines: &[[u32; 2]],
+    point_fields: &[VtuField],
+    cell_fields: &[VtuField],
+) -> Result<()> {
+    for (kind, fields, n) in [
+        ("point field", point_fields, points.len()),
+        ("cell field", cell_fields, lines.len()),
+    ] {
+        for f in fields {
+            if f.components == 0 || f.values.len() != f.components * n {
+                return Err(DcfmError::invalid(
+                    label(path),
+                    format!("{kind} '{}'", f.name),
+                    format!("{} values, {} components", f.values.len(), f.components),
+                    format!("components >= 1 and components x {n} values"),
+                ));
+            }
+        }
+    }
+    if let Some((c, l)) = lines
+        .iter()
+        .enumerate()
+        .find(|(_, l)| l.iter().any(|&a| a as usize >= points.len()))
+    {
+        return Err(DcfmError::invalid(
+            label(path),
+            format!("line {c}"),
+            format!("{l:?}"),
+            format!("point indices below {}", points.len()),
+        ));
+    }
+    write_atomic_with(path, |w| {
+        let n = lines.len() as u64;
+        let mut next = 0u64;
+        let mut take = |bytes: u64| {
+            let o = next;
+            next += 4 * (8 + bytes).div_ceil(3);
+            o
+        };
+        let pf: Vec<u64> = point_fields
+            .iter()
+            .map(|f| take(8 * f.values.len() as u64))
+            .collect();
+        let cf: Vec<u64> = cell_fields
+            .iter()
+            .map(|f| take(8 * f.values.len() as u64))
+            .collect();
+        let pts = take(24 * points.len() as u64);
+        let conn = take(16 * n);
+        let offs = take(8 * n);
+        let types = take(n);
+        writeln!(w, "<?xml version=\"1.0\"?>")?;
+        writeln!(w, "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">")?;
+        writeln!(w, "  <UnstructuredGrid>")?;
+        writeln!(
+            w,
+            "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">",
+            points.len(),
+            n
+        )?;
+        for (tag, fields, offsets) in [
+            ("PointData", point_fields, &pf),
+            ("CellData", cell_fields, &cf),
+        ] {
+            writeln!(w, "      <{tag}>")?;
+            for (f, o) in fields.iter().zip(offsets.iter()) {
+                writeln!(w, "        <DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"appended\" offset=\"{o}\"/>", xml_escape(f.name), f.components)?;
+            }
+            writeln!(w, "      </{tag}>")?;
+        }
+        writeln!(w, "      <Points>\n        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" format=\"appended\" offset=\"{pts}\"/>\n      </Points>")?;
+        writeln!(w, "      <Cells>")?;
+        writeln!(w, "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"appended\" offset=\"{conn}\"/>")?;
+        writeln!(w, "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"appended\" offset=\"{offs}\"/>")?;
+        writeln!(w, "        <DataArray type=\"UInt8\" Name=\"types\" format=\"appended\" offset=\"{types}\"/>")?;
+        writeln!(w, "      </Cells>\n    </Piece>\n  </UnstructuredGrid>")?;
+        write!(w, "  <AppendedData encoding=\"base64\">\n   _")?;
+        let mut b = Base64Writer::new(w);
+        for f in point_fields.iter().chain(cell_fields) {
+            b.put(&(8 * f.values.len() as u64).to_le_bytes())?;
+            for v in f.values {
+                b.put(&v.to_le_bytes())?;
+            }
+            b.end_array()?;
+        }
+        b.put(&(24 * points.len() as u64).to_le_bytes())?;
+        for p in points {
+            for v in p {
+                b.put(&v.to_le_bytes())?;
+            }
+        }
+        b.end_array()?;
+        b.put(&(16 * n).to_le_bytes())?;
+        for l in lines {
+            for &a in l {
+                b.put(&(a as i64).to_le_bytes())?;
+            }
+        }
+        b.end_array()?;
+        b.put(&(8 * n).to_le_bytes())?;
+        for i in 1..=n {
+            b.put(&(2 * i as i64).to_le_bytes())?;
+        }
+        b.end_array()?;
+        b.put(&n.to_le_bytes())?;
+        for _ in 0..n {
+            b.put(&[VTK_LINE])?;
+        }
+        b.end_array()?;
+        debug_assert_eq!(b.written, next);
+        b.flush()?;
+        write!(w, "\n  </AppendedData>\n</VTKFile>\n")?;
+        Ok(())
+    })
+}
+
+#[cfg(test)]
+mod line_tests {
+    use super::*;
+    use crate::output::test_dir;
+    use vtkio::model::{DataSet, Piece, VertexNumbers};
+
+    #[test]
+    fn lines_round_trip_through_vtkio() {
+        let dir = test_dir("vtu-lines");
+        let path = dir.join("anchors.vtu");
+        let points = [[0.0, 0.0, 0.0], [0.0, 0.0, 0.5], [0.0, 0.0, 1.25]];
+        let lines = [[0, 1], [1, 2]];
+        let force = [1.5e5, -2.0e3];
+        write_vtu_lines(
+            &path,
+            &points,
+            &lines,
+            &[],
+            &[VtuField {
+                name: "axial_force",
+                components: 1,
+                values: &force,
+            }],
+        )
+        .unwrap();
+        let vtk = vtkio::Vtk::import(&path).expect("vtkio reads the file");
+        let DataSet::UnstructuredGrid { mut pieces, .. } = vtk.data else {
+            panic!("not a grid")
+        };
+        let Piece::Inline(p) = pieces.remove(0) else {
+            panic!("not inline")
+        };
+        assert_eq!(
+            p.points.cast_into::<f64>().unwrap(),
+            points.iter().flatten().copied().collect::<Vec<_>>()
+        );
+        match p.cells.cell_verts {
+            VertexNumbers::XML {
+                connectivity,
+                offsets,
+            } => {
+                assert_eq!(connectivity, vec![0, 1, 1, 2]);
+                assert_eq!(offsets, vec![2, 4]);
+            }
+            other => panic!("{other:?}"),
+        }
+        assert_eq!(p.cells.types, vec![vtkio::model::CellType::Line; 2]);
+        let bad = write_vtu_lines(&path, &points, &[[0, 7]], &[], &[])
+            .unwrap_err()
+            .to_string();
+        assert!(bad.contains("line 0"), "{bad}");
+    }
+}

@@ -25,18 +25,15 @@ pub(super) fn build_mesh(section: &MeshSection, label: &str, dir: &Path) -> Resu
         (Some(g), true) => {
             let path = dir.join(g);
             let mut mesh = crate::mesh::gmsh::read_gmsh(&path)?;
-            for (si, [a, b]) in section.split.iter().enumerate() {
-                crate::mesh::box_generator::split_between_regions(&mut mesh, a, b).map_err(
-                    |msg| {
-                        DcfmError::invalid(
-                            label,
-                            format!("mesh.split[{si}]"),
-                            format!("[{a}, {b}]"),
-                            msg,
-                        )
-                    },
-                )?;
-            }
+            crate::mesh::split::split_region_pairs(&mut mesh, &section.split).map_err(|e| {
+                let [a, b] = &section.split[e.pair];
+                DcfmError::invalid(
+                    label,
+                    format!("mesh.split[{}]", e.pair),
+                    format!("[{a}, {b}]"),
+                    e.message,
+                )
+            })?;
             Ok(mesh)
         }
         (None, false) => section.box_spec().build(label),

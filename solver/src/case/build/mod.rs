@@ -4,6 +4,7 @@
 //! order the sections depend on each other (mesh → materials → model → interfaces →
 //! constraints → loads → absorbing boundaries and seismic input → outputs → time step).
 
+mod anchors;
 mod boundary;
 mod checks;
 mod loads;
@@ -62,6 +63,7 @@ fn build(file: CaseFile, label: &str, dir: &Path) -> Result<Case> {
         let system = crate::contact::ContactSystem::new(&model.mesh, &file.interfaces, label)?;
         model.contact = Some(system);
     }
+    anchors::build_anchors(&mut model, &file.anchors, label)?;
     boundary::build_boundary(&mut model, &file.boundary, label)?;
     loads::build_loads(&mut model, &file.loads, label)?;
     loads::build_damping(&mut model, &file.damping, &file.regions, label)?;

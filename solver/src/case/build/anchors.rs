@@ -1,0 +1,123 @@
+//! `[anchors]`: anchor bars given as lines (`[[anchors.bars]]`) or as patterns over a face
+//! set (`[[anchors.patterns]]`), superposed on their host elements; their steel mass goes
+//! to the host nodes and their stiffness into the critical step.
+
+use crate::element::anchor_bar::{AnchorBars, AnchorSection, BarNames, SteelSpec};
+use crate::element::anchor_pattern::pattern_points;
+use crate::element::host_locate::HostLocator;
+use crate::error::{DcfmError, Result};
+use crate::model::Model;
+
+fn check_steel(steel: &SteelSpec, field: &str, label: &str) -> Result<()> {
+    let positive = |name: &str, v: f64, unit: &str, hi: f64| {
+        if !(v.is_finite() && v > 0.0 && v < hi) {
+            Err(DcfmError::invalid(
+                label,
+                format!("{field}.{name}"),
+                v,
+                format!("must be > 0 and < {hi:e} ({unit})"),
+            ))
+        } else {
+            Ok(())
+        }
+    };
+    positive("diameter", steel.diameter, "m", 1.0)?;
+    positive("young", steel.young, "Pa", 1e13)?;
+    positive("yield_stress", steel.yield_stress, "Pa", 1e10)?;
+    positive("density", steel.density, "kg/m³", 1e5)?;
+    if !(steel.pretension.is_finite() && steel.pretension >= 0.0) {
+        return Err(DcfmError::invalid(
+            label,
+            format!("{field}.pretension"),
+            steel.pretension,
+            "must be ≥ 0 (N)",
+        ));
+    }
+    if let Some(k) = steel.bond_stiffness {
+        positive("bond_stiffness", k, "N/m per m", 1e16)?;
+    }
+    if let Some(l) = steel.segment_length {
+        positive("segment_length", l, "m", 1e4)?;
+    }
+    Ok(())
+}
+
+/// Build the bars of `[anchors]` into the model.
+pub(super) fn build_anchors(model: &mut Model, section: &AnchorSection, label: &str) -> Result<()> {
+    if section.bars.is_empty() && section.patterns.is_empty() {
+        return Ok(());
+    }
+    let mesh = &model.mesh;
+    let locator = HostLocator::new(mesh, |_| true);
+    let mut bars = AnchorBars::default();
+    for (i, b) in section.bars.iter().enumerate() {
+        let field = format!("anchors.bars[{i}]");
+        check_steel(&b.steel, &field, label)?;
+        if b.start.iter().chain(&b.end).any(|v| !v.is_finite()) {
+            return Err(DcfmError::invalid(
+                label,
+                format!("{field}.start"),
+                format!("{:?} → {:?}", b.start, b.end),
+                "finite points (m)",
+            ));
+        }
+        let name = b.name.clone().unwrap_or_else(|| format!("bar{i}"));
+        let names = BarNames {
+            name: name.clone(),
+            group: name,
+        };
+        bars.add_bar(mesh, &locator, names, [b.start, b.end], &b.steel)
+            .map_err(|msg| {
+                DcfmError::invalid(label, field, format!("{:?} → {:?}", b.start, b.end), msg)
+            })?;
+    }
+    for (i, p) in section.patterns.iter().enumerate() {
+        let field = format!("anchors.patterns[{i}]");
+        check_steel(&p.steel, &field, label)?;
+        for (name, v) in [("length", p.length), ("spacing", p.spacing)] {
+            if !(v.is_finite() && v > 0.0 && v < 1e4) {
+                return Err(DcfmError::invalid(
+                    label,
+                    format!("{field}.{name}"),
+                    v,
+                    "must be > 0 (m)",
+                ));
+            }
+        }
+        let faces = mesh.face_sets.get(&p.face_set).ok_or_else(|| {
+            DcfmError::invalid(
+                label,
+                format!("{field}.face_set"),
+                &p.face_set,
+                format!(
+                    "a face set of the mesh (face sets: {:?})",
+                    mesh.face_sets.keys().collect::<Vec<_>>()
+                ),
+            )
+        })?;
+        let group = p.name.clone().unwrap_or_else(|| format!("pattern{i}"));
+        for (k, (start, dir)) in pattern_points(mesh, faces, p.spacing)
+            .into_iter()
+            .enumerate()
+        {
+            let end: [f64; 3] = std::array::from_fn(|d| start[d] + p.length * dir[d]);
+            let names = BarNames {
+                name: format!("{group}.{k}"),
+                group: group.clone(),
+            };
+            bars.add_bar(mesh, &locator, names, [start, end], &p.steel)
+                .map_err(|msg| {
+                    DcfmError::invalid(label, field.clone(), format!("bar {k} from {start:?}"), msg)
+                })?;
+        }
+    }
+    bars.finish();
+    bars.add_host_masses(&model.mesh, &mut model.mass);
+    for (w, m) in model.inv_mass.iter_mut().zip(&model.mass) {
+        *w = 1.0 / m;
+    }
+    let omega2 = bars.omega_squared_bound(&model.mesh, &model.mass);
+    model.include_extra_stiffness(omega2);
+    model.anchors = Some(bars);
+    Ok(())
+}

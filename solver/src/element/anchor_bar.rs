@@ -1,0 +1,639 @@
+//! Anchor bars embedded in rock or concrete (paper §3 and its ref. [39], Xiao 1992: the
+//! implicit anchor bar element whose stiffness is superposed on its host elements).
+//!
+//! Each bar is cut into segments where it crosses host element faces (and, optionally,
+//! into pieces no longer than `segment_length`); the ends of a segment lie in one host
+//! element, located by their natural coordinates (Newton inverse map of the trilinear hex).
+//!
+//! **Perfect bond** (default): a segment of length l along the unit vector t between host
+//! points p and q has the axial strain ε = t·(u(q) − u(p))/l with u(ξ) = Σ N_a(ξ) u_a, the
+//! force N = N₀ + EA (ε − εᵖ) of elastic–perfectly plastic steel (|N| ≤ f_y A, εᵖ grows by
+//! the excess), and returns f_a = N t (N_a(q) − N_a(p)) to the host nodes — the internal
+//! force ∂W/∂u_a of W = ½ EA l ε². N₀ is the pretension. The steel mass ρAl goes to the
+//! host nodes through the shape functions.
+//!
+//! **Bond–slip** (`bond_stiffness` k_s given): the bar has its own nodes at the segment
+//! ends, each with one axial displacement w_i and the steel mass of its half segments; a
+//! bond spring k_s l_i (l_i the node's tributary length) ties w_i to the axial host
+//! displacement t·u(p_i). The bar nodes are integrated by central difference in step with
+//! the host ([`AnchorBars::commit`]). Pull-out of such a bar from a fixed host follows
+//! N(x) = P sinh(λ(L − x))/sinh(λL), λ = √(k_s/EA) (VERIFICATION.md W11).
+//!
+//! Determinism: bars are processed serially in input order after the element colours, so
+//! results do not depend on the number of threads.
+
+use serde::Deserialize;
+
+use crate::element::host_locate::{HostLocator, HostPoint};
+use crate::mesh::Mesh;
+
+/// `[[anchors.bars]]`: one bar between two points.
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct BarSpec {
+    /// Name (histories, messages); default `bar<i>`.
+    #[serde(default)]
+    pub name: Option<String>,
+    pub start: [f64; 3],
+    pub end: [f64; 3],
+    #[serde(flatten)]
+    pub steel: SteelSpec,
+}
+
+/// Steel and bond of a bar or pattern.
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+pub struct SteelSpec {
+    /// Bar diameter (m); A = π d²/4.
+    pub diameter: f64,
+    /// Young's modulus (Pa).
+    #[serde(default = "default_young")]
+    pub young: f64,
+    /// Yield stress f_y (Pa).
+    pub yield_stress: f64,
+    /// Steel density (kg/m³).
+    #[serde(default = "default_density")]
+    pub density: f64,
+    /// Pretension (N): initial axial force (perfect bond), or a head force against a plate
+    /// on the host (bond–slip).
+    #[serde(default)]
+    pub pretension: f64,
+    /// Bond stiffness per length k_s (N/m per m): the bar gets its own nodes tied to the
+    /// host by bond springs. Default: perfect bond.
+    #[serde(default)]
+    pub bond_stiffness: Option<f64>,
+    /// Largest segment length (m); default: segments end at host element faces only.
+    #[serde(default)]
+    pub segment_length: Option<f64>,
+}
+
+fn default_young() -> f64 {
+    200e9
+}
+fn default_density() -> f64 {
+    7850.0
+}
+
+/// `[[anchors.patterns]]`: bars from every part of a face set into its elements.
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct PatternSpec {
+    /// Name (histories); default `pattern<i>`.
+    #[serde(default)]
+    pub name: Option<String>,
+    /// The face set the bars start from; they run along the inward normal (into the
+    /// faces' own elements).
+    pub face_set: String,
+    /// Bar length (m).
+    pub length: f64,
+    /// One bar per `spacing`² of surface (m).
+    pub spacing: f64,
+    #[serde(flatten)]
+    pub steel: SteelSpec,
+}
+
+/// `[anchors]`.
+#[derive(Clone, Debug, Default, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct AnchorSection {
+    #[serde(default)]
+    pub bars: Vec<BarSpec>,
+    #[serde(default)]
+    pub patterns: Vec<PatternSpec>,
+}
+
+/// One segment of a perfectly bonded bar, inside one host element.
+#[derive(Clone, Debug)]
+pub struct Segment {
+    pub bar: u32,
+    pub host: u32,
+    /// N_a(q) − N_a(p) over the host's eight nodes.
+    pub g: [f64; 8],
+    /// End points (reference) and the shape functions there.
+    pub p: HostPoint,
+    pub q: HostPoint,
+    pub t: [f64; 3],
+    pub length: f64,
+    /// End points (reference).
+    pub x: [[f64; 3]; 2],
+}
+
+/// A bond–slip bar: its own nodes.
+#[derive(Clone, Debug)]
+pub struct BondSlipBar {
+    pub bar: u32,
+    pub t: [f64; 3],
+    /// Node positions (reference), hosts, tributary lengths, masses.
+    pub x: Vec<[f64; 3]>,
+    pub hosts: Vec<HostPoint>,
+    pub bond: Vec<f64>,
+    pub mass: Vec<f64>,
+    /// Segment lengths (n − 1).
+    pub lengths: Vec<f64>,
+    /// Axial displacement w_i and half-step velocity of the nodes.
+    pub w: Vec<f64>,
+    pub v: Vec<f64>,
+    /// Internal forces on the nodes at the last internal-force pass.
+    f: Vec<f64>,
+    /// Axial force pulling the head (node 0) out of the host (N); with `plate` the host
+    /// takes the reaction at the head.
+    pub head_load: f64,
+    pub plate: bool,
+    /// First segment of this bar in the state arrays.
+    first: usize,
+}
+
+/// Per-bar constants.
+#[derive(Clone, Debug)]
+pub struct BarInfo {
+    pub name: String,
+    /// Group for histories (the bar's own name or its pattern's).
+    pub group: String,
+    pub ea: f64,
+    pub yield_force: f64,
+    pub pretension: f64,
+    /// Steel mass per length ρA (kg/m).
+    pub mass_per_length: f64,
+    pub start: [f64; 3],
+    pub end: [f64; 3],
+}
+
+/// All the anchor bars of a model with their state.
+#[derive(Clone, Debug, Default)]
+pub struct AnchorBars {
+    pub bars: Vec<BarInfo>,
+    pub segments: Vec<Segment>,
+    pub bond_slip: Vec<BondSlipBar>,
+    /// Plastic strain of every segment (perfect-bond segments first, then the bond–slip
+    /// bars' segments), committed and trial.
+    plastic: Vec<f64>,
+    plastic_trial: Vec<f64>,
+    /// Axial force of every segment at the last internal-force pass (N).
+    pub force: Vec<f64>,
+}
+
+/// A bar's name and its history group.
+pub struct BarNames {
+    pub name: String,
+    pub group: String,
+}
+
+/// Segments for VTU line output: end points, point pairs, axial force and bar per line.
+pub struct BarLines {
+    pub points: Vec<[f64; 3]>,
+    pub lines: Vec<[u32; 2]>,
+    pub force: Vec<f64>,
+    pub bar: Vec<f64>,
+}
+
+/// Why a bar could not be built (as text; the case builder adds the field path).
+pub type BarError = String;
+
+impl AnchorBars {
+    /// Add one straight bar from `a` to `b`, cut at the faces of the elements `locator`
+    /// holds; `group` names its history group.
+    pub fn add_bar(
+        &mut self,
+        mesh: &Mesh,
+        locator: &HostLocator,
+        names: BarNames,
+        [a, b]: [[f64; 3]; 2],
+        steel: &SteelSpec,
+    ) -> Result<(), BarError> {
+        let BarNames { name, group } = names;
+        let len = (0..3).map(|d| (b[d] - a[d]).powi(2)).sum::<f64>().sqrt();
+        if !(len.is_finite() && len > 0.0) {
+            return Err(format!("start and end must differ (length {len} m)"));
+        }
+        let t: [f64; 3] = std::array::from_fn(|d| (b[d] - a[d]) / len);
+        let (cuts, hosts) = locator
+            .cut(mesh, &a, &b, steel.segment_length)
+            .map_err(|s| {
+                let p: [f64; 3] = std::array::from_fn(|d| a[d] + s * (b[d] - a[d]));
+                format!("leaves the mesh at {p:?} ({:.3} m from its start)", s * len)
+            })?;
+        let at = |s: f64| -> [f64; 3] { std::array::from_fn(|d| a[d] + s * (b[d] - a[d])) };
+        let area = 0.25 * std::f64::consts::PI * steel.diameter * steel.diameter;
+        let bar = self.bars.len() as u32;
+        self.bars.push(BarInfo {
+            name,
+            group,
+            ea: steel.young * area,
+            yield_force: steel.yield_stress * area,
+            pretension: steel.pretension,
+            mass_per_length: steel.density * area,
+            start: a,
+            end: b,
+        });
+        let locate = |e: u32, s: f64| {
+            locator.locate_in(mesh, e, &at(s), 1e-6).ok_or_else(|| {
+                format!(
+                    "could not locate the point at {:.3} m in element {e}",
+                    s * len
+                )
+            })
+        };
+        match steel.bond_stiffness {
+            None => {
+                for (w, &h) in cuts.windows(2).zip(&hosts) {
+                    let (p, q) = (locate(h, w[0])?, locate(h, w[1])?);
+                    self.segments.push(Segment {
+                        bar,
+                        host: h,
+                        g: std::array::from_fn(|k| q.n[k] - p.n[k]),
+                        p,
+                        q,
+                        t,
+                        length: (w[1] - w[0]) * len,
+                        x: [at(w[0]), at(w[1])],
+                    });
+                }
+            }
+            Some(ks) => {
+                let n = cuts.len();
+                let lengths: Vec<f64> = cuts.windows(2).map(|w| (w[1] - w[0]) * len).collect();
+                let mut host_points = Vec::with_capacity(n);
+                for (i, &s) in cuts.iter().enumerate() {
+                    let h = hosts[i.min(hosts.len() - 1)];
+                    host_points.push(locate(h, s)?);
+                }
+                let trib: Vec<f64> = (0..n)
+                    .map(|i| {
+                        0.5 * (if i > 0 { lengths[i - 1] } else { 0.0 }
+                            + if i + 1 < n { lengths[i] } else { 0.0 })
+                    })
+                    .collect();
+                self.bond_slip.push(BondSlipBar {
+                    bar,
+                    t,
+                    x: cuts.iter().map(|&s| at(s)).collect(),
+                    hosts: host_points,
+                    bond: trib.iter().map(|l| ks * l).collect(),
+                    mass: trib.iter().map(|l| steel.density * area * l).collect(),
+                    lengths,
+                    w: vec![0.0; n],
+                    v: vec![0.0; n],
+                    f: vec![0.0; n],
+                    head_load: steel.pretension,
+                    plate: true,
+                    first: 0,
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Size the state arrays once every bar is added.
+    pub fn finish(&mut self) {
+        let mut n = self.segments.len();
+        for b in self.bond_slip.iter_mut() {
+            b.first = n;
+            n += b.lengths.len();
+        }
+        self.plastic = vec![0.0; n];
+        self.plastic_trial = vec![0.0; n];
+        self.force = vec![0.0; n];
+    }
+
+    /// Number of bars.
+    pub fn len(&self) -> usize {
+        self.bars.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.bars.is_empty()
+    }
+
+    /// Steel mass of the perfectly bonded segments, added to their host nodes (half of a
+    /// segment to each end, spread by the shape functions).
+    pub fn add_host_masses(&self, mesh: &Mesh, mass: &mut [f64]) {
+        for s in &self.segments {
+            let m = self.bars[s.bar as usize].mass_per_length * s.length;
+            let conn = mesh.elements[s.host as usize];
+            for a in 0..8 {
+                mass[conn[a] as usize] += 0.5 * m * (s.p.n[a] + s.q.n[a]);
+            }
+        }
+    }
+
+    /// Elastic–perfectly plastic axial force of segment `k` for axial strain `eps`, the
+    /// trial plastic strain stored.
+    #[inline]
+    fn axial_force(&mut self, k: usize, info_ea: f64, yield_force: f64, n0: f64, eps: f64) -> f64 {
+        let ep = self.plastic[k];
+        let trial = n0 + info_ea * (eps - ep);
+        if trial.abs() <= yield_force {
+            self.plastic_trial[k] = ep;
+            trial
+        } else {
+            let n = yield_force * trial.signum();
+            self.plastic_trial[k] = ep + (trial - n) / info_ea;
+            n
+        }
+    }
+
+    /// Add the bars' internal forces for host displacements `u` to `f_int` (the lead's
+    /// internal-force pass calls this after the element colours). Plastic strains are
+    /// trial values until [`AnchorBars::commit`].
+    pub fn add_internal_forces(&mut self, mesh: &Mesh, u: &[[f64; 3]], f_int: &mut [[f64; 3]]) {
+        for k in 0..self.segments.len() {
+            let (host, g, t, length, bar) = {
+                let s = &self.segments[k];
+                (s.host, s.g, s.t, s.length, s.bar)
+            };
+            let conn = mesh.elements[host as usize];
+            let mut du = 0.0;
+            for a in 0..8 {
+                let ua = u[conn[a] as usize];
+                du += g[a] * (t[0] * ua[0] + t[1] * ua[1] + t[2] * ua[2]);
+            }
+            let info = &self.bars[bar as usize];
+            let (ea, fy, n0) = (info.ea, info.yield_force, info.pretension);
+            let n = self.axial_force(k, ea, fy, n0, du / length);
+            self.force[k] = n;
+            for a in 0..8 {
+                let f = &mut f_int[conn[a] as usize];
+                for d in 0..3 {
+                    f[d] += n * t[d] * g[a];
+                }
+            }
+        }
+        for bi in 0..self.bond_slip.len() {
+            let info = &self.bars[self.bond_slip[bi].bar as usize];
+            let (ea, fy) = (info.ea, info.yield_force);
+            let first = self.bond_slip[bi].first;
+            let nseg = self.bond_slip[bi].lengths.len();
+            // Axial forces of the bar's own segments.
+            for s in 0..nseg {
+                let b = &self.bond_slip[bi];
+                let eps = (b.w[s + 1] - b.w[s]) / b.lengths[s];
+                let n = self.axial_force(first + s, ea, fy, 0.0, eps);
+                self.force[first + s] = n;
+            }
+            let b = &mut self.bond_slip[bi];
+            for i in 0..b.w.len() {
+                // Bar node: −N of the segment it starts, +N of the one it ends.
+                let mut fi = 0.0;
+                if i < nseg {
+                    fi -= self.force[first + i];
+                }
+                if i > 0 {
+                    fi += self.force[first + i - 1];
+                }
+                let h = &b.hosts[i];
+                let conn = mesh.elements[h.element as usize];
+                let mut uh = 0.0;
+                for a in 0..8 {
+                    let ua = u[conn[a] as usize];
+                    uh += h.n[a] * (b.t[0] * ua[0] + b.t[1] * ua[1] + b.t[2] * ua[2]);
+                }
+                let bond = b.bond[i] * (b.w[i] - uh);
+                fi += bond;
+                b.f[i] = fi;
+                // The host takes −bond along t (and the plate reaction at the head).
+                let mut fh = -bond;
+                if i == 0 && b.plate {
+                    fh -= b.head_load;
+                }
+                for a in 0..8 {
+                    let f = &mut f_int[conn[a] as usize];
+                    for d in 0..3 {
+                        f[d] += fh * b.t[d] * h.n[a];
+                    }
+                }
+            }
+        }
+    }
+
+    /// End of a step: commit the plastic strains and advance the bond–slip bars' own nodes
+    /// by central difference with mass-proportional damping `alpha` (the model's α).
+    pub fn commit(&mut self, dt: f64, alpha: f64) {
+        std::mem::swap(&mut self.plastic, &mut self.plastic_trial);
+        self.plastic_trial.copy_from_slice(&self.plastic);
+        for b in self.bond_slip.iter_mut() {
+            for i in 0..b.w.len() {
+                // The head load pulls node 0 out (against t).
+                let ext = if i == 0 { -b.head_load } else { 0.0 };
+                let m = b.mass[i];
+                b.v[i] += dt * (ext - b.f[i] - alpha * m * b.v[i]) / m;
+                b.w[i] += dt * b.v[i];
+            }
+        }
+    }
+
+    /// Gershgorin bound on the largest eigenvalue of M^{-1/2} K_bars M^{-1/2} (host masses
+    /// `mass`, the bar nodes' own masses): by Weyl's inequality the model's ω²_max is at
+    /// most the elements' ω²_max plus this, so 2/√(ω²_h + ω²_b) is a stable step.
+    pub fn omega_squared_bound(&self, mesh: &Mesh, mass: &[f64]) -> f64 {
+        let mut row = vec![0.0f64; 3 * mesh.n_nodes()];
+        let mut worst = 0.0f64;
+        for s in &self.segments {
+            let info = &self.bars[s.bar as usize];
+            let k = info.ea / s.length;
+            let conn = mesh.elements[s.host as usize];
+            let gs: f64 = (0..8)
+                .map(|b| s.g[b].abs() / mass[conn[b] as usize].sqrt())
+                .sum();
+            let ts: f64 = s.t.iter().map(|v| v.abs()).sum();
+            for a in 0..8 {
+                let n = conn[a] as usize;
+                for i in 0..3 {
+                    row[3 * n + i] += k * s.g[a].abs() / mass[n].sqrt() * gs * s.t[i].abs() * ts;
+                }
+            }
+        }
+        for b in &self.bond_slip {
+            let info = &self.bars[b.bar as usize];
+            let n = b.w.len();
+            // The bar's own axial chain: its exact largest eigenvalue (Sturm bisection, an
+            // upper bound); the bond springs by Gershgorin, added by Weyl.
+            let chain = chain_max_eigenvalue(info.ea, &b.lengths, &b.mass);
+            let mut bond_worst = 0.0f64;
+            for i in 0..n {
+                let mi = b.mass[i];
+                let mut r = 0.0;
+                // Bond spring: its own diagonal and the coupling to the host nodes.
+                let h = &b.hosts[i];
+                let conn = mesh.elements[h.element as usize];
+                let ts: f64 = b.t.iter().map(|v| v.abs()).sum();
+                let hs: f64 = (0..8).map(|a| h.n[a] / mass[conn[a] as usize].sqrt()).sum();
+                r += b.bond[i] / mi + b.bond[i] / mi.sqrt() * hs * ts;
+                bond_worst = bond_worst.max(r);
+                for a in 0..8 {
+                    let nn = conn[a] as usize;
+                    for d in 0..3 {
+                        row[3 * nn + d] += b.bond[i] * h.n[a] / mass[nn].sqrt()
+                            * b.t[d].abs()
+                            * (1.0 / mi.sqrt() + hs * ts);
+                    }
+                }
+            }
+            worst = worst.max(chain + bond_worst);
+        }
+        row.into_iter().fold(worst, f64::max)
+    }
+
+    /// History values: per group, the largest axial force (N) and the number of yielded
+    /// segments, in the order of [`AnchorBars::history_names`].
+    pub fn history_names(&self) -> Vec<String> {
+        let mut out = Vec::new();
+        for g in self.groups() {
+            out.push(format!("anchor_{g}_max_force"));
+            out.push(format!("anchor_{g}_yielded_segments"));
+        }
+        out
+    }
+
+    fn groups(&self) -> Vec<String> {
+        let mut g: Vec<String> = Vec::new();
+        for b in &self.bars {
+            if !g.contains(&b.group) {
+                g.push(b.group.clone());
+            }
+        }
+        g
+    }
+
+    /// Bar of every segment in the state arrays.
+    fn segment_bars(&self) -> Vec<u32> {
+        let mut out: Vec<u32> = self.segments.iter().map(|s| s.bar).collect();
+        for b in &self.bond_slip {
+            out.extend(std::iter::repeat_n(b.bar, b.lengths.len()));
+        }
+        out
+    }
+
+    /// Append the history values to `row`.
+    pub fn history_values(&self, row: &mut Vec<f64>) {
+        let bars = self.segment_bars();
+        for g in self.groups() {
+            let mut max = 0.0f64;
+            let mut yielded = 0usize;
+            for (k, &b) in bars.iter().enumerate() {
+                let info = &self.bars[b as usize];
+                if info.group != g {
+                    continue;
+                }
+                max = max.max(self.force[k]);
+                yielded += usize::from(
+                    self.plastic[k] != 0.0
+                        && self.force[k].abs() >= info.yield_force * (1.0 - 1e-12),
+                );
+            }
+            row.push(max);
+            row.push(yielded as f64);
+        }
+    }
+
+    /// Segment end points (reference) and axial forces, for VTU line output: (points,
+    /// lines as point pairs, force per line, bar per line).
+    pub fn lines(&self) -> BarLines {
+        let mut pts = Vec::new();
+        let mut lines = Vec::new();
+        let mut bars = Vec::new();
+        for s in &self.segments {
+            let p = pts.len() as u32;
+            pts.extend(s.x);
+            lines.push([p, p + 1]);
+            bars.push(s.bar as f64);
+        }
+        for b in &self.bond_slip {
+            let p0 = pts.len() as u32;
+            pts.extend(&b.x);
+            for s in 0..b.lengths.len() as u32 {
+                lines.push([p0 + s, p0 + s + 1]);
+                bars.push(b.bar as f64);
+            }
+        }
+        BarLines {
+            points: pts,
+            lines,
+            force: self.force.clone(),
+            bar: bars,
+        }
+    }
+
+    /// State for checkpoints: plastic strains, then every bond–slip node's w and v.
+    pub fn state(&self) -> Vec<f64> {
+        let mut s = self.plastic.clone();
+        for b in &self.bond_slip {
+            s.extend(&b.w);
+            s.extend(&b.v);
+        }
+        s
+    }
+
+    /// Restore [`AnchorBars::state`]; false when the length does not match.
+    pub fn restore_state(&mut self, s: &[f64]) -> bool {
+        let n: usize =
+            self.plastic.len() + self.bond_slip.iter().map(|b| 2 * b.w.len()).sum::<usize>();
+        if s.len() != n {
+            return false;
+        }
+        let k = self.plastic.len();
+        self.plastic.copy_from_slice(&s[..k]);
+        self.plastic_trial.copy_from_slice(&s[..k]);
+        let mut at = k;
+        for b in self.bond_slip.iter_mut() {
+            let n = b.w.len();
+            b.w.copy_from_slice(&s[at..at + n]);
+            b.v.copy_from_slice(&s[at + n..at + 2 * n]);
+            at += 2 * n;
+        }
+        true
+    }
+}
+
+/// Largest eigenvalue of M^{-1/2} K M^{-1/2} of a free chain of axial bar segments
+/// (stiffness EA/l_s between nodes of lumped mass m_i): Sturm-sequence bisection on the
+/// symmetric tridiagonal matrix, returning the upper end of the final bracket (Wilkinson,
+/// The Algebraic Eigenvalue Problem, §5.37).
+pub fn chain_max_eigenvalue(ea: f64, lengths: &[f64], mass: &[f64]) -> f64 {
+    let n = mass.len();
+    if n < 2 {
+        return 0.0;
+    }
+    let k: Vec<f64> = lengths.iter().map(|l| ea / l).collect();
+    let diag: Vec<f64> = (0..n)
+        .map(|i| {
+            let left = if i > 0 { k[i - 1] } else { 0.0 };
+            let right = if i + 1 < n { k[i] } else { 0.0 };
+            (left + right) / mass[i]
+        })
+        .collect();
+    let off: Vec<f64> = (0..n - 1)
+        .map(|i| -k[i] / (mass[i] * mass[i + 1]).sqrt())
+        .collect();
+    // Eigenvalues below x.
+    let below = |x: f64| {
+        let mut count = 0;
+        let mut d = 1.0;
+        for i in 0..n {
+            let b2 = if i > 0 { off[i - 1] * off[i - 1] } else { 0.0 };
+            d = diag[i] - x - if i > 0 { b2 / d } else { 0.0 };
+            if d == 0.0 {
+                d = -f64::EPSILON * (diag[i].abs() + x.abs()).max(f64::MIN_POSITIVE);
+            }
+            if d < 0.0 {
+                count += 1;
+            }
+        }
+        count
+    };
+    let mut hi = (0..n)
+        .map(|i| {
+            diag[i]
+                + if i > 0 { off[i - 1].abs() } else { 0.0 }
+                + if i + 1 < n { off[i].abs() } else { 0.0 }
+        })
+        .fold(0.0, f64::max);
+    let mut lo = 0.0;
+    for _ in 0..100 {
+        let mid = 0.5 * (lo + hi);
+        if below(mid) == n {
+            hi = mid;
+        } else {
+            lo = mid;
+        }
+    }
+    hi
+}

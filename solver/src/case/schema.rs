@@ -35,6 +35,9 @@ pub struct CaseFile {
     /// Contact interfaces (`[[interfaces]]`), see docs/contact.md.
     #[serde(default)]
     pub interfaces: Vec<crate::contact::InterfaceSpec>,
+    /// Ground motions (`[motions.NAME]`), see docs/motion.md.
+    #[serde(default)]
+    pub motions: BTreeMap<String, crate::motion::MotionSpec>,
 }
 
 /// `[time]`.

@@ -9,6 +9,7 @@ mod checks;
 mod loads;
 mod materials;
 mod mesh;
+mod motions;
 mod output;
 mod time;
 
@@ -31,6 +32,8 @@ pub struct Case {
     pub end: f64,
     pub safety: f64,
     pub output: OutputSection,
+    /// The case's ground motions by name (`[motions.NAME]`), for the seismic input.
+    pub motions: crate::motion::Motions,
 }
 
 /// Read, parse and build a case file.
@@ -50,8 +53,9 @@ pub fn parse_case(text: &str, label: &str, dir: &Path) -> Result<Case> {
     build(file, label, dir)
 }
 
-fn build(file: CaseFile, label: &str, dir: &Path) -> Result<Case> {
+fn build(mut file: CaseFile, label: &str, dir: &Path) -> Result<Case> {
     time::check_time(&file.time, label)?;
+    let motions = motions::build_motions(&mut file, label, dir)?;
     let mut mesh = mesh::build_mesh(&file.mesh, label, dir)?;
     mesh::add_node_sets(&mut mesh, &file.node_sets, label)?;
     let materials = materials::build_materials(&file.materials, label)?;
@@ -78,5 +82,6 @@ fn build(file: CaseFile, label: &str, dir: &Path) -> Result<Case> {
         end: file.time.end,
         safety: file.time.safety,
         output: file.output,
+        motions,
     })
 }

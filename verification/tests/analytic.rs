@@ -46,7 +46,7 @@ fn every_case_is_tested_here() {
     let ids: Vec<&str> = cases::all().iter().map(|c| c.id).collect();
     let covered = [
         "W1", "patch", "energy", "W10", "W13", "W1-conv", "W5", "W6", "W7", "W8", "W9", "bonded",
-        "drop",
+        "drop", "W15a", "W15b", "W15c", "W15d", "W15e", "W15f",
     ];
     for id in ids {
         assert!(

@@ -6,5 +6,6 @@
 //! histories, the JSON summary, atomic writes). The binary `dcfm` (src/main.rs) parses
 //! the command line.
 
+pub mod motion_cmd;
 pub mod output;
 pub mod run;

@@ -3,6 +3,7 @@
 //! ```text
 //! dcfm check CASE                       validate, print the model summary and the stable step
 //! dcfm run CASE [--out DIR] [--threads N] [--resume] [--quiet]
+//! dcfm motion FILE… [--format F] [--units U] [--dt DT] [processing flags] [--out DIR] [--plot svg]
 //! ```
 
 use std::path::PathBuf;
@@ -50,6 +51,9 @@ enum Command {
         #[arg(long)]
         quiet: bool,
     },
+    /// Read, process and measure a ground motion (docs/motion.md): prints PGA/PGV/PGD,
+    /// Arias intensity and D5–95, writes motion, spectrum, Husid and Fourier CSV files.
+    Motion(Box<dcfm_app::motion_cmd::MotionArgs>),
 }
 
 /// Print a line to stdout, ignoring a closed pipe (`dcfm check x | head` must not panic).
@@ -69,6 +73,18 @@ macro_rules! esay {
 fn main() -> ExitCode {
     let cli = Cli::parse();
     match cli.command {
+        Command::Motion(args) => match dcfm_app::motion_cmd::run(&args) {
+            Ok(lines) => {
+                for l in lines {
+                    say!("{l}");
+                }
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                esay!("error: {e}");
+                ExitCode::from(2)
+            }
+        },
         Command::Check { case } => match load_case(&case) {
             Ok(c) => {
                 let m = &c.model;

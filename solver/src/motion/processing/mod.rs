@@ -232,7 +232,8 @@ pub fn process(
     let duration = (npts.max(1) - 1) as f64 * dt;
     options.validate(file, field, dt, duration)?;
     let mut provenance = vec![format!(
-        "read {} ({} format, station \"{}\"): {} component(s) of {npts} samples, dt {dt} s, stored in {}, converted to m/s²",
+        "{} {} ({} format, station \"{}\"): {} component(s) of {npts} samples, dt {dt} s, stored in {}, converted to m/s²",
+        if record.format == super::readers::Format::Synthetic { "generated" } else { "read" },
         record.source,
         record.format,
         record.station,

@@ -12,7 +12,9 @@
 //!   3 s fade to zero at the end;
 //! - spectral shape (not fitted to the record; typical of a near-fault rock site):
 //!   horizontals f_g = 3 Hz, ζ_g = 0.6; vertical f_g = 6 Hz, ζ_g = 0.6; high-pass
-//!   f_f = 0.25 Hz (0.3 Hz vertical), ζ_f = 0.7;
+//!   f_f = 0.5 Hz (0.6 Hz vertical), ζ_f = 0.7, which keeps the peak ground velocity
+//!   and displacement near 1 m/s and 0.5 m (the displacement variance of the
+//!   Clough–Penzien spectrum grows as f_f^−3);
 //! - peaks: x (EW) 9.577 m/s², y (NS) 6.53 m/s², z (UD) 9.48 m/s²;
 //! - the EW peak is placed at 13.01 s of the window — 33.01 s of the original record —
 //!   to the sample; the NS and UD peaks fall where their noise puts them;
@@ -40,7 +42,7 @@ pub fn parameters() -> GeneratorParameters {
         pga,
         ground_frequency: 3.0,
         ground_damping: 0.6,
-        highpass_frequency: 0.25,
+        highpass_frequency: 0.5,
         highpass_damping: 0.7,
         peak_time,
     };
@@ -75,7 +77,7 @@ pub fn parameters() -> GeneratorParameters {
                     pga: PGA_UD,
                     ground_frequency: 6.0,
                     ground_damping: 0.6,
-                    highpass_frequency: 0.3,
+                    highpass_frequency: 0.6,
                     highpass_damping: 0.7,
                     peak_time: None,
                 },

@@ -35,7 +35,7 @@ use std::sync::Arc;
 
 pub use ground_motion::{GroundMotion, Kinematics, MotionComponent};
 pub use processing::{process, ProcessingOptions};
-pub use readers::{read_file, read_str, Format, ReadOptions};
+pub use readers::{read_bytes, read_file, read_str, Format, ReadOptions};
 pub use record::{Axis, Record, RecordComponent};
 pub use spec::MotionSpec;
 pub use synthetic::SyntheticSpec;

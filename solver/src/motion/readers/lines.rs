@@ -141,13 +141,15 @@ pub(crate) fn line_error(
 /// accepted. `Err` holds the token quoted, for the error message.
 pub(crate) fn parse_number(token: &str) -> std::result::Result<f64, String> {
     let t = token.trim();
-    let lowered = t.to_ascii_lowercase();
-    // Rust would accept these words; a record never holds them as data.
-    if lowered.contains("inf") || lowered.contains("nan") || t.is_empty() {
-        return Err(format!("\"{t}\" (not a finite number)"));
-    }
-    let fixed: String = t.replace(['D', 'd'], "e");
-    match fixed.parse::<f64>() {
+    // Rust's parser also reads "inf" and "NaN": they come out non-finite and are refused.
+    let parsed = t.parse::<f64>().or_else(|_| {
+        if t.contains(['D', 'd']) && !t.contains(['i', 'I', 'n', 'N']) {
+            t.replace(['D', 'd'], "e").parse::<f64>()
+        } else {
+            "x".parse::<f64>()
+        }
+    });
+    match parsed {
         Ok(v) if v.is_finite() => Ok(v),
         Ok(_) => Err(format!("\"{t}\" (not a finite number)")),
         Err(_) => Err(format!("\"{t}\"")),

@@ -32,6 +32,7 @@ pub(super) fn read(text: &str, label: &str, options: &ReadOptions, csv: bool) ->
         };
         fields.iter().map(|f| f.trim().to_string()).collect()
     };
+    let mut fields_buf: Vec<&str> = Vec::new();
     for (i, raw) in text.lines().enumerate() {
         let n = i + 1;
         let line = raw.trim();
@@ -65,22 +66,28 @@ pub(super) fn read(text: &str, label: &str, options: &ReadOptions, csv: bool) ->
             }
             continue;
         }
-        let fields = split(line);
         let looks_numeric = |f: &String| {
             f.starts_with(|c: char| c.is_ascii_digit() || c == '-' || c == '+' || c == '.')
         };
-        if rows.is_empty()
-            && header.is_none()
-            && fields
+        if rows.is_empty() && header.is_none() {
+            let fields = split(line);
+            if fields
                 .iter()
                 .all(|f| parse_number(f).is_err() && !looks_numeric(f))
-        {
-            // A header row: names only (a mistyped number is an error, not a name).
-            header = Some(fields);
-            continue;
+            {
+                // A header row: names only (a mistyped number is an error, not a name).
+                header = Some(fields);
+                continue;
+            }
         }
-        let mut values = Vec::with_capacity(fields.len());
-        for f in &fields {
+        fields_buf.clear();
+        if csv || line.contains([',', ';']) {
+            fields_buf.extend(line.split([',', ';']).map(str::trim));
+        } else {
+            fields_buf.extend(line.split_whitespace());
+        }
+        let mut values = Vec::with_capacity(fields_buf.len());
+        for f in &fields_buf {
             values.push(parse_number(f).map_err(|e| line_error(label, n, e, "a finite number"))?);
         }
         if let Some((_, first)) = rows.first() {

@@ -469,7 +469,7 @@ fn svg_plot(
     );
     let _ = writeln!(
         s,
-        "<rect x=\"{LEFT}\" y=\"{top}\" width=\"{plot_w}\" height=\"{ph}\" fill=\"none\" stroke=\"#888\"/>\n<text x=\"{}\" y=\"{}\">pseudo-acceleration spectra, damping {damping} (max {:.3} m/s²); period {} to {} s, log scale</text>",
+        "<rect x=\"{LEFT}\" y=\"{top}\" width=\"{plot_w}\" height=\"{ph}\" fill=\"none\" stroke=\"#888\"/>\n<text x=\"{}\" y=\"{}\">pseudo-acceleration spectra, damping {damping} (max {:.3} m/s²); period {:.3} to {:.3} s, log scale</text>",
         LEFT + 5.0,
         top + 14.0,
         smax,

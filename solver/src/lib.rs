@@ -23,6 +23,7 @@ pub mod load;
 pub mod material;
 pub mod mesh;
 pub mod model;
+pub mod motion;
 pub mod stage;
 
 pub use error::{DcfmError, Result};

@@ -7,5 +7,6 @@
 //! the command line.
 
 pub mod mesh_cmd;
+pub mod motion_cmd;
 pub mod output;
 pub mod run;

@@ -4,6 +4,7 @@
 //! dcfm check CASE                       validate, print the model summary and the stable step
 //! dcfm run CASE [--out DIR] [--threads N] [--resume] [--quiet]
 //! dcfm mesh yingxiuwan [--variant full|ci] [--out DIR]
+//! dcfm motion FILE… [--format F] [--units U] [--dt DT] [processing flags] [--out DIR] [--plot svg]
 //! ```
 
 use std::path::PathBuf;
@@ -62,6 +63,9 @@ enum Command {
         #[arg(long, default_value = "yingxiuwan")]
         out: PathBuf,
     },
+    /// Read, process and measure a ground motion (docs/motion.md): prints PGA/PGV/PGD,
+    /// Arias intensity and D5–95, writes motion, spectrum, Husid and Fourier CSV files.
+    Motion(Box<dcfm_app::motion_cmd::MotionArgs>),
 }
 
 /// Print a line to stdout, ignoring a closed pipe (`dcfm check x | head` must not panic).
@@ -86,6 +90,18 @@ fn main() -> ExitCode {
             variant,
             out,
         } => dcfm_app::mesh_cmd::run_mesh_command(&model, &variant, &out),
+        Command::Motion(args) => match dcfm_app::motion_cmd::run(&args) {
+            Ok(lines) => {
+                for l in lines {
+                    say!("{l}");
+                }
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                esay!("error: {e}");
+                ExitCode::from(2)
+            }
+        },
         Command::Check { case } => match load_case(&case) {
             Ok(c) => {
                 let m = &c.model;

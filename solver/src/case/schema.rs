@@ -41,6 +41,9 @@ pub struct CaseFile {
     /// Anchor bars (`[anchors]`), see docs/anchors.md.
     #[serde(default)]
     pub anchors: crate::element::anchor_bar::AnchorSection,
+    /// Ground motions (`[motions.NAME]`), see docs/motion.md.
+    #[serde(default)]
+    pub motions: BTreeMap<String, crate::motion::MotionSpec>,
 }
 
 /// `[time]`.

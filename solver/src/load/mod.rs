@@ -4,4 +4,4 @@ mod nodal;
 pub mod time_function;
 
 pub use nodal::{Gravity, NodalLoad};
-pub use time_function::TimeFunction;
+pub use time_function::{MotionQuantity, TimeFunction};

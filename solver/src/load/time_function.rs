@@ -1,8 +1,21 @@
 //! Scalar functions of time that scale loads and prescribed motions.
 
+use std::sync::Arc;
+
 use serde::Deserialize;
 
 use crate::error::{DcfmError, Result};
+use crate::motion::{motion_by_name, MotionComponent, Motions};
+
+/// Which history of a ground-motion component a [`TimeFunction::Motion`] gives.
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum MotionQuantity {
+    #[default]
+    Acceleration,
+    Velocity,
+    Displacement,
+}
 
 /// A scalar history h(t). In case files: `{ type = "half_sine", amplitude = 0.1, period = 0.02 }`.
 #[derive(Clone, Debug, Deserialize, PartialEq)]
@@ -55,9 +68,64 @@ pub enum TimeFunction {
         #[serde(default)]
         delay: Option<f64>,
     },
+    /// h = scale · q(t − start), q the acceleration (m/s²), velocity or displacement of
+    /// component `component` ("x", "y", "z" or the record's own name) of the case's
+    /// `[motions.NAME]`: `{ type = "motion", motion = "wolong", component = "x" }`.
+    /// Resolved when the case is built ([`TimeFunction::resolve_motions`]); the ground is
+    /// at rest before the motion starts. O(1) and allocation-free (see
+    /// [`MotionComponent::at`]).
+    Motion {
+        motion: String,
+        component: String,
+        #[serde(default)]
+        quantity: MotionQuantity,
+        #[serde(default = "unit_scale")]
+        scale: f64,
+        #[serde(default)]
+        start: f64,
+        /// The component, once resolved.
+        #[serde(skip)]
+        series: Option<Arc<MotionComponent>>,
+    },
+}
+
+fn unit_scale() -> f64 {
+    1.0
 }
 
 impl TimeFunction {
+    /// Attach the ground-motion component a [`TimeFunction::Motion`] names (other variants
+    /// are left as they are). `field` is the function's path in the case file.
+    pub fn resolve_motions(&mut self, motions: &Motions, file: &str, field: &str) -> Result<()> {
+        if let TimeFunction::Motion {
+            motion,
+            component,
+            series,
+            ..
+        } = self
+        {
+            let m = motion_by_name(motions, motion, file, &format!("{field}.motion"))?;
+            let c = m.component_named(component).ok_or_else(|| {
+                let names: Vec<String> = m
+                    .components
+                    .iter()
+                    .map(|c| match c.axis {
+                        Some(a) => format!("{} ({})", a.name(), c.name),
+                        None => c.name.clone(),
+                    })
+                    .collect();
+                DcfmError::invalid(
+                    file,
+                    format!("{field}.component"),
+                    format!("\"{component}\""),
+                    format!("a component of motion \"{motion}\": {}", names.join(", ")),
+                )
+            })?;
+            *series = Some(c.clone());
+        }
+        Ok(())
+    }
+
     /// Check the parameters; `field` is the path of the function in the case file.
     pub fn validate(&self, file: &str, field: &str) -> Result<()> {
         let finite = |name: &str, v: f64| -> Result<()> {
@@ -135,6 +203,25 @@ impl TimeFunction {
                 positive("frequency", *frequency)?;
                 if let Some(d) = delay {
                     finite("delay", *d)?;
+                }
+                Ok(())
+            }
+            TimeFunction::Motion {
+                motion,
+                scale,
+                start,
+                series,
+                ..
+            } => {
+                finite("scale", *scale)?;
+                finite("start", *start)?;
+                if series.is_none() {
+                    return Err(DcfmError::invalid(
+                        file,
+                        format!("{field}.motion"),
+                        format!("\"{motion}\""),
+                        "a motion resolved from [motions.NAME] (this function was not resolved)",
+                    ));
                 }
                 Ok(())
             }
@@ -244,6 +331,25 @@ impl TimeFunction {
                 let w = (t - times[i]) / (times[i + 1] - times[i]);
                 values[i] + w * (values[i + 1] - values[i])
             }
+            TimeFunction::Motion {
+                quantity,
+                scale,
+                start,
+                series,
+                ..
+            } => match series {
+                Some(c) => {
+                    let k = c.at(t - start);
+                    scale
+                        * match quantity {
+                            MotionQuantity::Acceleration => k.a,
+                            MotionQuantity::Velocity => k.v,
+                            MotionQuantity::Displacement => k.u,
+                        }
+                }
+                // Unresolved (validate rejects it): loud rather than silently zero.
+                None => f64::NAN,
+            },
         }
     }
 
@@ -319,6 +425,24 @@ impl TimeFunction {
                 }
                 acc
             }
+            TimeFunction::Motion {
+                quantity,
+                scale,
+                start,
+                series,
+                ..
+            } => match series {
+                Some(c) => {
+                    // ∫₀ᵗ q(τ − start) dτ = F(t − start) − F(−start), F(s) = ∫₀ˢ q.
+                    let f = |s: f64| match quantity {
+                        MotionQuantity::Acceleration => c.at(s).v,
+                        MotionQuantity::Velocity => c.at(s).u,
+                        MotionQuantity::Displacement => c.displacement_integral_at(s),
+                    };
+                    scale * (f(t - start) - f(-start))
+                }
+                None => f64::NAN,
+            },
         }
     }
 }

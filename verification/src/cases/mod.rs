@@ -22,6 +22,12 @@ pub mod w10_plastic_damage;
 pub mod w11_rock_bolt;
 pub mod w13_stable_step;
 pub mod w14_free_field;
+pub mod w15_arias;
+pub mod w15_butterworth;
+pub mod w15_integration;
+pub mod w15_records;
+pub mod w15_response_spectrum;
+pub mod w15_synthetic;
 
 /// A registered case: name and the function that runs it.
 pub struct Case {
@@ -99,6 +105,30 @@ pub fn all() -> Vec<Case> {
         Case {
             id: "drop",
             run: contact_drop_bounce::run,
+        },
+        Case {
+            id: "W15a",
+            run: w15_response_spectrum::run,
+        },
+        Case {
+            id: "W15b",
+            run: w15_arias::run,
+        },
+        Case {
+            id: "W15c",
+            run: w15_butterworth::run,
+        },
+        Case {
+            id: "W15d",
+            run: w15_integration::run,
+        },
+        Case {
+            id: "W15e",
+            run: w15_records::run,
+        },
+        Case {
+            id: "W15f",
+            run: w15_synthetic::run,
         },
     ]
 }

@@ -10,6 +10,7 @@ mod checks;
 mod loads;
 mod materials;
 mod mesh;
+mod motions;
 mod output;
 mod time;
 
@@ -32,6 +33,8 @@ pub struct Case {
     pub end: f64,
     pub safety: f64,
     pub output: OutputSection,
+    /// The case's ground motions by name (`[motions.NAME]`), for the seismic input.
+    pub motions: crate::motion::Motions,
 }
 
 /// Read, parse and build a case file.
@@ -51,8 +54,9 @@ pub fn parse_case(text: &str, label: &str, dir: &Path) -> Result<Case> {
     build(file, label, dir)
 }
 
-fn build(file: CaseFile, label: &str, dir: &Path) -> Result<Case> {
+fn build(mut file: CaseFile, label: &str, dir: &Path) -> Result<Case> {
     time::check_time(&file.time, label)?;
+    let motions = motions::build_motions(&mut file, label, dir)?;
     let mut mesh = mesh::build_mesh(&file.mesh, label, dir)?;
     mesh::add_node_sets(&mut mesh, &file.node_sets, label)?;
     let materials = materials::build_materials(&file.materials, label)?;
@@ -81,5 +85,6 @@ fn build(file: CaseFile, label: &str, dir: &Path) -> Result<Case> {
         end: file.time.end,
         safety: file.time.safety,
         output: file.output,
+        motions,
     })
 }

@@ -12,6 +12,8 @@ mod mesh;
 mod output;
 mod time;
 
+pub use materials::build_materials;
+
 use std::path::{Path, PathBuf};
 
 use crate::case::schema::*;

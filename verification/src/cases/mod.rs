@@ -1,9 +1,13 @@
 //! Registered verification cases: one file per case, each with a header giving its goal,
-//! sketch, boundary conditions, parameters, reference and tolerance.
+//! sketch, boundary conditions, parameters, reference and tolerance. The registry holds
+//! what the report shows about each case as data: id, title, group, the requirement
+//! sentence, the reference (with the section of `docs/verification_references.md` it
+//! cites) and the tolerance with its reason.
 
 use dcfm::Result;
+use serde::Serialize;
 
-use crate::record::CheckRow;
+use crate::record::CaseOutput;
 
 pub mod contact_bonded_monolithic;
 pub mod contact_drop_bounce;
@@ -19,66 +23,241 @@ pub mod w09_pair_step;
 pub mod w10_plastic_damage;
 pub mod w13_stable_step;
 
-/// A registered case: name and the function that runs it.
-pub struct Case {
+/// What the report says about a case (written to `results.json` under `cases`).
+#[derive(Clone, Copy, Debug, Serialize, PartialEq, Eq)]
+pub struct CaseInfo {
+    /// Short id (W1, W1-conv, patch, ...).
     pub id: &'static str,
-    pub run: fn() -> Result<Vec<CheckRow>>,
+    /// Title: the `case` of its rows in `results.json`.
+    pub title: &'static str,
+    /// Report group (the summary counts passes per group).
+    pub group: &'static str,
+    /// What the solver must do, as one sentence.
+    pub requirement: &'static str,
+    /// The reference solution and where it is stated (a section of
+    /// `docs/verification_references.md` or a cited work).
+    pub reference: &'static str,
+    /// The tolerance and why it is that.
+    pub tolerance: &'static str,
+}
+
+/// A registered case: what it is and the function that runs it.
+pub struct Case {
+    pub info: CaseInfo,
+    pub run: fn() -> Result<CaseOutput>,
+}
+
+impl Case {
+    /// Short id.
+    pub fn id(&self) -> &'static str {
+        self.info.id
+    }
 }
 
 /// Every case the runner executes, in report order.
 pub fn all() -> Vec<Case> {
     vec![
         Case {
-            id: "W1",
+            info: CaseInfo {
+                id: "W1",
+                title: w01_wave_pulses::TITLE,
+                group: "Wave propagation",
+                requirement: "Plane P and S pulses travel up a hex8 column with the wave \
+                    speed, amplitude ρcv0 and net displacement of d'Alembert's solution, and \
+                    double in velocity at a free end and in stress at a fixed end; the energy \
+                    balance closes.",
+                reference: "d'Alembert's solution of the 1D wave equation for a half-sine \
+                    velocity pulse (docs/verification_references.md §W1; energy §W12).",
+                tolerance: "Peaks ±3 % (lumped-mass central difference disperses ≤ 2 % with \
+                    ≥ 20 elements per pulse), arrival ±2Δt, doubling 2.00 ± 0.06, net \
+                    displacement ±1 %, energy residual ≤ 1 % of the largest energy.",
+            },
             run: w01_wave_pulses::run,
         },
         Case {
-            id: "W1-conv",
+            info: CaseInfo {
+                id: "W1-conv",
+                title: convergence_w01::TITLE,
+                group: "Wave propagation",
+                requirement: "Under refinement at a fixed Courant number the displacement \
+                    error of a smooth pulse falls at second order in h.",
+                reference: "Order 2 of central difference in time and lumped hex8 in space \
+                    (docs/verification_references.md §W1, convergence).",
+                tolerance: "Fitted log–log slope 2 ± 0.25: four meshes give a slope to a few \
+                    hundredths; 0.25 separates order 2 from order 1.5.",
+            },
             run: convergence_w01::run,
         },
         Case {
-            id: "patch",
+            info: CaseInfo {
+                id: "patch",
+                title: patch_test::TITLE,
+                group: "Elements and time integration",
+                requirement: "A distorted patch of hex8 elements reproduces a linear \
+                    displacement field exactly (stress E0:ε in every element, no force on \
+                    the free interior node), with one-point and full integration.",
+                reference: "The imposed linear field (constant-strain patch test, MacNeal & \
+                    Harder 1985).",
+                tolerance: "1e-10 relative: the field is represented exactly, so only \
+                    round-off remains.",
+            },
             run: patch_test::run,
         },
         Case {
-            id: "energy",
+            info: CaseInfo {
+                id: "energy",
+                title: energy_conservation::TITLE,
+                group: "Elements and time integration",
+                requirement: "In undamped free vibration the scheme neither creates nor \
+                    destroys energy over 10⁴ steps.",
+                reference: "Conservation of the leapfrog scheme's energy ½V^{n−½}·MV^{n+½} + \
+                    ½UⁿKUⁿ for a linear system (Hairer, Lubich & Wanner 2006, §I.1).",
+                tolerance: "1e-6 relative for the scheme's energy (exactly conserved: \
+                    round-off only); 1e-4 for the full-step energy, whose O((ωΔt)²) \
+                    oscillation a 1000-step window does not average out.",
+            },
             run: energy_conservation::run,
         },
         Case {
-            id: "W10",
-            run: w10_plastic_damage::run,
-        },
-        Case {
-            id: "W13",
+            info: CaseInfo {
+                id: "W13",
+                title: w13_stable_step::TITLE,
+                group: "Elements and time integration",
+                requirement: "The element matrices have the hex8 spectrum (free cube limit \
+                    0.775 h/c_p), the step the driver allows is stable and a step beyond \
+                    the mesh's limit is caught as an instability.",
+                reference: "Lumped-mass hex8 stable step (docs/verification_references.md \
+                    §W13).",
+                tolerance: "1 % on 0.775 h/c_p (an eigenvalue, computed to round-off); \
+                    stability itself is pass/fail over 3000 steps.",
+            },
             run: w13_stable_step::run,
         },
         Case {
-            id: "W5",
+            info: CaseInfo {
+                id: "W10",
+                title: w10_plastic_damage::TITLE,
+                group: "Material",
+                requirement: "The Lee–Fenves plastic-damage model, driven through a hex8 \
+                    element and the explicit driver, follows the closed-form uniaxial \
+                    softening laws, dissipates G_t per crack area whatever the element \
+                    size, unloads with slope (1−D)E0, recovers stiffness on crack closure \
+                    and has Kupfer's biaxial strength ratio.",
+                reference: "Lee & Fenves (1998) closed forms \
+                    (docs/verification_references.md §W10).",
+                tolerance: "Curve 1 %, dissipated energy 2 %, unloading slope 1 %, biaxial \
+                    ratio 1 % (W10): the closed forms are exact for one uniformly strained \
+                    element, the margin covers the slow-loading inertia.",
+            },
+            run: w10_plastic_damage::run,
+        },
+        Case {
+            info: CaseInfo {
+                id: "W5",
+                title: w05_bar_impact::TITLE,
+                group: "Contact",
+                requirement: "Point-to-point contact transmits the impact force of 1D wave \
+                    theory between two bars for 2L/c and lets them separate, and a bar \
+                    rebounds from a rigid wall.",
+                reference: "1D elastic impact (docs/verification_references.md §W5).",
+                tolerance: "Plateau ±3 %, duration ±2Δt, momentum ±0.5 %, energy ±2 % \
+                    (W5); energy residual ≤ 2 % (W12).",
+            },
             run: w05_bar_impact::run,
         },
         Case {
-            id: "W6",
+            info: CaseInfo {
+                id: "W6",
+                title: w06_incline::TITLE,
+                group: "Contact",
+                requirement: "A block on an incline sticks when gravity along the slope \
+                    is below static friction and otherwise slides with a = g(sinθ − μd \
+                    cosθ), with pairs and with point-to-surface contact; the friction work \
+                    closes the energy balance.",
+                reference: "Coulomb friction on a rigid block \
+                    (docs/verification_references.md §W6).",
+                tolerance: "±1 % (W6); 'sticks' means a slide below 1 % of the 0.7534 m \
+                    slide; energy residual ≤ 2 % (W12).",
+            },
             run: w06_incline::run,
         },
         Case {
-            id: "W7",
+            info: CaseInfo {
+                id: "W7",
+                title: w07_newmark_block::TITLE,
+                group: "Contact",
+                requirement: "A block on a base with prescribed acceleration slips as \
+                    Newmark's rigid-plastic sliding block: the slip of a rectangular pulse \
+                    and the per-cycle slip of one-way sliding.",
+                reference: "Newmark (1965) sliding block \
+                    (docs/verification_references.md §W7).",
+                tolerance: "±3 % (W7): the elastic plate approximates a rigid block.",
+            },
             run: w07_newmark_block::run,
         },
         Case {
-            id: "W8",
+            info: CaseInfo {
+                id: "W8",
+                title: w08_cohesive_bond::TITLE,
+                group: "Contact",
+                requirement: "A cohesive bond debonds at cA in tension and carries no \
+                    tension after, transmits recompression, and in shear holds cA + μs N \
+                    until the first slip, then μd N.",
+                reference: "The bond-slip law of the paper's eqs. (12)–(15) \
+                    (docs/verification_references.md §W8).",
+                tolerance: "±1 % on forces, event times within 2Δt, zero tension after \
+                    debonding to 1e-9 N: the law is exact (W9), the margin covers the \
+                    plate's ride.",
+            },
             run: w08_cohesive_bond::run,
         },
         Case {
-            id: "W9",
+            info: CaseInfo {
+                id: "W9",
+                title: w09_pair_step::TITLE,
+                group: "Contact",
+                requirement: "One contact pair over one step gives the pair-law table \
+                    exactly: stick force, bond, tension, sliding and separation.",
+                reference: "Eqs. (6)–(15) of the paper for an isolated pair \
+                    (docs/verification_references.md §W9).",
+                tolerance: "1e-10 relative (absolute 1e-10 N for zero references): the \
+                    answer is exact, so only round-off remains.",
+            },
             run: w09_pair_step::run,
         },
         Case {
-            id: "bonded",
+            info: CaseInfo {
+                id: "bonded",
+                title: contact_bonded_monolithic::TITLE,
+                group: "Contact",
+                requirement: "A bonded split interface reproduces the merged-node mesh \
+                    while a P pulse crosses it twice (compression, then tension).",
+                reference: "The same model without the split (merged nodes).",
+                tolerance: "1e-12 relative: the two updates differ only by floating-point \
+                    association.",
+            },
             run: contact_bonded_monolithic::run,
         },
         Case {
-            id: "drop",
+            info: CaseInfo {
+                id: "drop",
+                title: contact_drop_bounce::TITLE,
+                group: "Contact",
+                requirement: "A block dropped on a base through point-to-surface contact \
+                    impacts at √(2gd), bounces, never penetrates and comes to rest \
+                    carrying its weight at its static sag.",
+                reference: "Free fall and static equilibrium of an elastic block under \
+                    self-weight (uniaxial stress, ν = 0).",
+                tolerance: "Own: rest force ±1 %, rest position ±1 % of the drop, \
+                    penetration ≤ the contact tolerance, sag ±3 % (8 linear elements), \
+                    energy residual ≤ 2 % (W12), impact time ±2Δt.",
+            },
             run: contact_drop_bounce::run,
         },
     ]
+}
+
+/// The metadata of every case (for `results.json`).
+pub fn infos() -> Vec<CaseInfo> {
+    all().iter().map(|c| c.info).collect()
 }

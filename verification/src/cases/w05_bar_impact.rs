@@ -15,7 +15,7 @@
 //! c = √(E/ρ)); rigid-wall variant: every node of the target fixed (w = 0).
 //! Parameters: E 30 GPa, ν 0, ρ 2400 kg/m³ (c 3535.53 m/s), A 1 m², L 2 m, 320 elements per
 //! bar, frictionless contact without cohesion (μs = μd = 0, c = 0), Δt = 0.9 Δt_crit.
-//! Reference (VERIFICATION.md W5, 1D wave theory): contact force ρcAv0/2 = 4.2426 MN for
+//! Reference (docs/verification_references.md §W5, 1D wave theory): contact force ρcAv0/2 = 4.2426 MN for
 //! 2L/c = 1.1314 ms, then the striker rests and the target moves at v0 (impulse 4800 N·s);
 //! against a rigid wall ρcAv0 = 8.485 MN (8.485 MPa on 1 m²) and rebound −v0.
 //! Measured: the interface force Σλ of the four pairs each step; the plateau is its time
@@ -37,9 +37,12 @@ use dcfm::Result;
 use crate::models::contact_blocks::{
     block, centre_of_mass, elastic, interface_forces, region_nodes,
 };
-use crate::record::{Check, CheckRow};
+use crate::record::{CaseOutput, Check};
 
-const SOURCE: &str = "VERIFICATION.md W5 (1D wave theory)";
+/// The case title (the `case` of its rows).
+pub const TITLE: &str = "W5 bar impact";
+
+const SOURCE: &str = "docs/verification_references.md §W5 (1D wave theory)";
 const E: f64 = 30e9;
 const RHO: f64 = 2400.0;
 const L: f64 = 2.0;
@@ -139,8 +142,8 @@ pub fn measure(elements_per_bar: usize, wall: bool) -> Result<ImpactMeasures> {
 }
 
 /// Run W5: two bars, and the striker against a rigid wall.
-pub fn run() -> Result<Vec<CheckRow>> {
-    let mut check = Check::new("W5 bar impact");
+pub fn run() -> Result<CaseOutput> {
+    let mut check = Check::new(TITLE);
     let c = (E / RHO).sqrt();
     let t_c = 2.0 * L / c;
     let f_bars = RHO * c * 1.0 * V0 / 2.0;
@@ -195,7 +198,7 @@ pub fn run() -> Result<Vec<CheckRow>> {
             -0.02,
             0.02,
             m.energy_residual,
-            "VERIFICATION.md W12",
+            "docs/verification_references.md §W12",
         );
     let w = measure(320, true)?;
     check
@@ -232,7 +235,7 @@ pub fn run() -> Result<Vec<CheckRow>> {
             -0.02,
             0.02,
             w.energy_residual,
-            "VERIFICATION.md W12",
+            "docs/verification_references.md §W12",
         );
-    Ok(check.finish())
+    Ok(check.finish().into())
 }

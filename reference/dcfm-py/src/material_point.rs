@@ -8,7 +8,7 @@ use pyo3::types::PyDict;
 
 use crate::arrays::{f64_array, matrix, vector};
 use crate::errors::{to_py, IntoPy};
-use crate::toml_value::dict_to_toml;
+use crate::toml_value::{dict_to_table, table_to_toml};
 
 /// Drive one point of `material` (a dict with the keys of a `[materials.NAME]` table:
 /// model, young, poisson, density and, for "plastic_damage", a `plastic_damage`
@@ -43,8 +43,14 @@ pub fn material_point<'py>(
         )));
     }
     let (eps, shape) = f64_array(strain, "strain", &[None, Some(6)])?;
-    let body = dict_to_toml(material, "material")?;
-    let text = format!("[materials.{}]\n{body}", toml_key(&name));
+    let mut materials = toml::Table::new();
+    materials.insert(
+        name.clone(),
+        toml::Value::Table(dict_to_table(material, "material")?),
+    );
+    let mut doc = toml::Table::new();
+    doc.insert("materials".into(), toml::Value::Table(materials));
+    let text = table_to_toml(&doc, "material")?;
     #[derive(serde::Deserialize)]
     struct Doc {
         materials: BTreeMap<String, dcfm::case::MaterialSection>,
@@ -91,17 +97,4 @@ pub fn material_point<'py>(
     out.set_item("kappa_compression", vector(py, k_c))?;
     out.set_item("plastic_strain", matrix(py, k, 6, plastic))?;
     Ok(out)
-}
-
-/// A TOML key for `name` (quoted unless bare).
-fn toml_key(name: &str) -> String {
-    if !name.is_empty()
-        && name
-            .chars()
-            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
-    {
-        name.to_string()
-    } else {
-        toml::Value::String(name.to_string()).to_string()
-    }
 }

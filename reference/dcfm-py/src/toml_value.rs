@@ -72,8 +72,8 @@ fn type_name(obj: &Bound<'_, PyAny>) -> String {
         .unwrap_or_else(|_| "?".into())
 }
 
-/// The TOML text of a dict (`argument` names the Python argument in messages).
-pub fn dict_to_toml(obj: &Bound<'_, PyAny>, argument: &str) -> PyResult<String> {
+/// A dict as a TOML table (`argument` names the Python argument in messages).
+pub fn dict_to_table(obj: &Bound<'_, PyAny>, argument: &str) -> PyResult<toml::Table> {
     if obj.cast::<PyDict>().is_err() {
         return Err(PyTypeError::new_err(format!(
             "{argument}: expected a dict, got a {}",
@@ -85,8 +85,18 @@ pub fn dict_to_toml(obj: &Bound<'_, PyAny>, argument: &str) -> PyResult<String> 
     let toml::Value::Table(table) = value else {
         unreachable!("a dict converts to a table")
     };
-    toml::to_string(&table)
+    Ok(table)
+}
+
+/// The TOML text of a table.
+pub fn table_to_toml(table: &toml::Table, argument: &str) -> PyResult<String> {
+    toml::to_string(table)
         .map_err(|e| PyTypeError::new_err(format!("{argument}: not expressible as TOML: {e}")))
+}
+
+/// The TOML text of a dict (`argument` names the Python argument in messages).
+pub fn dict_to_toml(obj: &Bound<'_, PyAny>, argument: &str) -> PyResult<String> {
+    table_to_toml(&dict_to_table(obj, argument)?, argument)
 }
 
 /// The TOML text the dict form of a case is read through (to see what the parser sees).

@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# The main job: set up (.venv, the dcfm module), build, run every verification case
+# (results/verification/results.json + series.json), the cross-checks against independent
+# codes (results/crosscheck/), and generate the report (reports/index.html,
+# reports/verification.md). Every stage runs even if an earlier one found failures, so
+# that the report shows them; the exit status is non-zero if any stage failed.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+status=0
+bash scripts/setup.sh
+cargo build --release --workspace
+echo "main: verification cases"
+cargo run --release -q -p dcfm-verification || status=1
+echo "main: cross-checks"
+.venv/bin/python -m pytest -q reference/tests || status=1
+echo "main: report"
+.venv/bin/python reports/generate.py || status=1
+exit "$status"

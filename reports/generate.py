@@ -273,6 +273,7 @@ class Drop:
     commit: str
     before: float
     after: float
+    cpu_share: float | None = None
 
     @property
     def change(self) -> float:
@@ -299,7 +300,7 @@ def throughput_drops(history: list[dict[str, Any]]) -> list[Drop]:
         for prev, cur in zip(recs, recs[1:]):
             a, b = prev["element_updates_per_s"], cur["element_updates_per_s"]
             if a > 0 and b < (1.0 - DROP) * a:
-                drops.append(Drop(key, cur["_line"], str(cur["commit"]), a, b))
+                drops.append(Drop(key, cur["_line"], str(cur["commit"]), a, b, cur.get("cpu_share")))
     return drops
 
 
@@ -350,6 +351,10 @@ def num(x: Any) -> str:
 
 def short(x: Any) -> str:
     return "–" if x is None else f"{float(x):.2e}"
+
+
+def share(x: Any) -> str:
+    return "–" if x is None else f"{float(x):.2f}"
 
 
 def esc(s: Any) -> str:
@@ -537,8 +542,9 @@ def build(inp: Inputs) -> tuple[str, str, list[str]]:
     if inp.performance:
         rep.h("<p>Wall time of the step loop alone, measured in one pytest run on one machine "
               "(<code>reference/tests/test_performance.py</code>, <code>test_opensees.py</code>). "
-              "Ratio: wall time over that of dcfm (full integration, 1 thread) on the same problem.</p>")
-        rep.m("Wall time of the step loop alone, measured in one pytest run on one machine. Ratio: wall time over that of dcfm (full integration, 1 thread) on the same problem.\n")
+              "Time ratio: time per element update over that of dcfm (full integration, 1 thread) on the same problem "
+              "(runs of different step counts compare per step).</p>")
+        rep.m("Wall time of the step loop alone, measured in one pytest run on one machine. Time ratio: time per element update over that of dcfm (full integration, 1 thread) on the same problem.\n")
         problems: list[str] = []
         for r in inp.performance:
             if r["problem"] not in problems:
@@ -550,7 +556,9 @@ def build(inp: Inputs) -> tuple[str, str, list[str]]:
             rs = [r for r in inp.performance if r["problem"] == p]
             base = next((r for r in rs if r["code"] == "dcfm" and r.get("threads") == 1 and r.get("variant", "full") == "full"), None)
             for r in rs:
-                ratio = r["wall_s"] / base["wall_s"] if base else None
+                ratio = None
+                if base and r.get("element_updates_per_s") and base.get("element_updates_per_s"):
+                    ratio = base["element_updates_per_s"] / r["element_updates_per_s"]
                 cells = [p, r["code"], r.get("variant", ""), r["threads"], r.get("elements", ""), r["steps"], f"{r['wall_s']:.3f}",
                          short(r.get("element_updates_per_s")), "–" if ratio is None else f"{ratio:.2f}"]
                 rep.h("<tr>" + "".join(f"<td>{esc(c)}</td>" for c in cells) + "</tr>")
@@ -567,17 +575,17 @@ def build(inp: Inputs) -> tuple[str, str, list[str]]:
         img = plot_history(inp.history, drops)
         rep.h("<p>Standard runs of <code>cargo run --release -p dcfm-benchmarks --bin throughput</code> "
               "(<code>benchmarks/history.jsonl</code>), one line per configuration. A record more than 10 % below the "
-              "previous record of the same configuration is flagged; records taken on a busy machine "
-              "(<code>cpu_share</code> well below 1) are flagged too when they drop.</p>")
+              "previous record of the same configuration is flagged, with the share of the cores the run had "
+              "(<code>cpu_share</code>: well below 1 means a busy machine, not necessarily a slower solver).</p>")
         if img:
             rep.h(f'<figure class="wide"><img alt="throughput history" src="data:image/png;base64,{img}"></figure>')
         rep.m("Standard runs of the throughput runner (`benchmarks/history.jsonl`). Drops of more than 10 % against the previous record of the same configuration:\n")
         if drops:
-            rep.h('<div class="scroll"><table><thead><tr><th>configuration</th><th>commit</th><th>line</th><th>before</th><th>after</th><th>change</th></tr></thead><tbody>')
-            rep.m("| configuration | commit | line | before | after | change |\n|---|---|---:|---:|---:|---:|")
+            rep.h('<div class="scroll"><table><thead><tr><th>configuration</th><th>commit</th><th>line</th><th>before</th><th>after</th><th>change</th><th>cpu share</th></tr></thead><tbody>')
+            rep.m("| configuration | commit | line | before | after | change | cpu share |\n|---|---|---:|---:|---:|---:|---:|")
             for d in drops:
-                rep.h(f'<tr><td>{esc(d.config)}</td><td><code>{esc(d.commit)}</code></td><td>{d.line}</td><td>{short(d.before)}</td><td>{short(d.after)}</td><td class="bad">{d.change * 100:+.1f} %</td></tr>')
-                rep.m(f"| {d.config} | `{d.commit}` | {d.line} | {short(d.before)} | {short(d.after)} | {d.change * 100:+.1f} % |")
+                rep.h(f'<tr><td>{esc(d.config)}</td><td><code>{esc(d.commit)}</code></td><td>{d.line}</td><td>{short(d.before)}</td><td>{short(d.after)}</td><td class="bad">{d.change * 100:+.1f} %</td><td>{share(d.cpu_share)}</td></tr>')
+                rep.m(f"| {d.config} | `{d.commit}` | {d.line} | {short(d.before)} | {short(d.after)} | {d.change * 100:+.1f} % | {share(d.cpu_share)} |")
             rep.h("</tbody></table></div>")
             rep.m("")
         else:
@@ -589,9 +597,8 @@ def build(inp: Inputs) -> tuple[str, str, list[str]]:
         rep.h('<div class="scroll"><table><thead><tr><th>configuration</th><th>latest commit</th><th>element updates/s</th><th>cpu share</th></tr></thead><tbody>')
         rep.m("| configuration | latest commit | element updates/s | cpu share |\n|---|---|---:|---:|")
         for key, r in latest.items():
-            share = r.get("cpu_share")
-            rep.h(f"<tr><td>{esc(key)}</td><td><code>{esc(r['commit'])}</code></td><td>{short(r['element_updates_per_s'])}</td><td>{'–' if share is None else f'{share:.2f}'}</td></tr>")
-            rep.m(f"| {key} | `{r['commit']}` | {short(r['element_updates_per_s'])} | {'–' if share is None else f'{share:.2f}'} |")
+            rep.h(f"<tr><td>{esc(key)}</td><td><code>{esc(r['commit'])}</code></td><td>{short(r['element_updates_per_s'])}</td><td>{share(r.get('cpu_share'))}</td></tr>")
+            rep.m(f"| {key} | `{r['commit']}` | {short(r['element_updates_per_s'])} | {share(r.get('cpu_share'))} |")
         rep.h("</tbody></table></div>")
         rep.m("")
     rep.h("</section>")

@@ -447,7 +447,7 @@ def build(inp: Inputs) -> tuple[str, str, list[str]]:
     rep.h(
         f'<p class="meta">Commit <code>{esc(inp.commit)}</code> · generated {now} · '
         f"{n_pass} of {len(inp.rows)} verification checks and {c_pass} of {len(inp.cross_rows)} "
-        "cross-checks pass</p></header>"
+        "cross-checks pass</p>"
     )
     rep.m("# dcfm verification report\n")
     rep.m(
@@ -458,6 +458,7 @@ def build(inp: Inputs) -> tuple[str, str, list[str]]:
     if inp.missing:
         rep.h('<p class="warn">Not found (sections left out): ' + ", ".join(f"<code>{esc(m)}</code>" for m in inp.missing) + "</p>")
         rep.m("Not found (sections left out): " + ", ".join(f"`{m}`" for m in inp.missing) + "\n")
+    rep.h("</header>")
 
     rep.h('<nav><a href="#summary">Summary</a> · <a href="#cases">Verification cases</a> · '
           '<a href="#crosschecks">Cross-checks</a> · <a href="#performance">Performance</a> · '

@@ -17,13 +17,13 @@ pub fn nodes3<'py>(py: Python<'py>, v: &[[f64; 3]]) -> Bound<'py, PyArray2<f64>>
         .into_pyarray(py)
 }
 
-/// (rows, cols) array from row-major data.
-pub fn matrix<'py>(
+/// (rows, cols) array from row-major data (floats or indices).
+pub fn matrix<'py, T: numpy::Element>(
     py: Python<'py>,
     rows: usize,
     cols: usize,
-    data: Vec<f64>,
-) -> Bound<'py, PyArray2<f64>> {
+    data: Vec<T>,
+) -> Bound<'py, PyArray2<T>> {
     Array2::from_shape_vec((rows, cols), data)
         .expect("rows × cols")
         .into_pyarray(py)
@@ -48,18 +48,6 @@ pub fn vector<'py>(py: Python<'py>, data: Vec<f64>) -> Bound<'py, PyArray1<f64>>
 /// 1-D integer array.
 pub fn index_vector<'py>(py: Python<'py>, data: Vec<i64>) -> Bound<'py, PyArray1<i64>> {
     Array1::from_vec(data).into_pyarray(py)
-}
-
-/// (rows, cols) integer array.
-pub fn index_matrix<'py>(
-    py: Python<'py>,
-    rows: usize,
-    cols: usize,
-    data: Vec<i64>,
-) -> Bound<'py, PyArray2<i64>> {
-    Array2::from_shape_vec((rows, cols), data)
-        .expect("rows × cols")
-        .into_pyarray(py)
 }
 
 /// `obj` as a float64 array whose shape matches `shape` (`None`: any length on that

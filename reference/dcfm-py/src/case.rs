@@ -6,7 +6,7 @@ use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::arrays::{index_matrix, index_vector, nodes3, vector};
+use crate::arrays::{index_vector, matrix, nodes3, vector};
 use crate::errors::{to_py, IntoPy};
 use crate::simulation::{RunOptions, Simulation};
 use crate::toml_value::dict_to_toml;
@@ -272,5 +272,5 @@ impl Case {
 /// (n, 8) integer connectivity.
 pub fn connectivity<'py>(py: Python<'py>, elements: &[[u32; 8]]) -> Bound<'py, PyAny> {
     let flat: Vec<i64> = elements.iter().flatten().map(|&n| n as i64).collect();
-    index_matrix(py, elements.len(), 8, flat).into_any()
+    matrix(py, elements.len(), 8, flat).into_any()
 }

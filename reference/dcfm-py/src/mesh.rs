@@ -6,7 +6,7 @@ use std::collections::BTreeMap;
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 
-use crate::arrays::{index_matrix, index_vector, nodes3};
+use crate::arrays::{index_vector, matrix, nodes3};
 use crate::case::connectivity;
 use crate::errors::{to_py, IntoPy};
 use crate::toml_value::to_value;
@@ -83,7 +83,7 @@ impl Mesh {
                 .iter()
                 .flat_map(|f| [f.element as i64, f.local as i64])
                 .collect();
-            d.set_item(name, index_matrix(py, faces.len(), 2, flat))?;
+            d.set_item(name, matrix(py, faces.len(), 2, flat))?;
         }
         Ok(d)
     }

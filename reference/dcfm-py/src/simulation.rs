@@ -52,20 +52,24 @@ struct Recorder {
     stress: Vec<f64>,
 }
 
+/// The energies of `ENERGY_NAMES`, in that order.
+fn energy_values(e: &dcfm::stage::Energies) -> [f64; 7] {
+    [
+        e.kinetic,
+        e.internal,
+        e.damping,
+        e.contact,
+        e.external,
+        e.input,
+        e.residual(),
+    ]
+}
+
 impl Recorder {
     fn record(&mut self, sim: &dcfm::stage::Simulation) {
-        let e = &sim.energies;
         self.step.push(sim.step as f64);
         self.time.push(sim.time);
-        self.energies.push([
-            e.kinetic,
-            e.internal,
-            e.damping,
-            e.contact,
-            e.external,
-            e.input,
-            e.residual(),
-        ]);
+        self.energies.push(energy_values(&sim.energies));
         for &n in &self.nodes {
             self.u.extend(sim.u[n]);
             self.v.extend(sim.v[n]);
@@ -280,20 +284,11 @@ fn energies_dict<'py>(
     py: Python<'py>,
     sim: &dcfm::stage::Simulation,
 ) -> PyResult<Bound<'py, PyDict>> {
-    let e = &sim.energies;
     let d = PyDict::new(py);
-    for (name, v) in ENERGY_NAMES.iter().zip([
-        e.kinetic,
-        e.internal,
-        e.damping,
-        e.contact,
-        e.external,
-        e.input,
-        e.residual(),
-    ]) {
+    for (name, v) in ENERGY_NAMES.iter().zip(energy_values(&sim.energies)) {
         d.set_item(name, v)?;
     }
-    d.set_item("initial_kinetic", e.initial_kinetic)?;
+    d.set_item("initial_kinetic", sim.energies.initial_kinetic)?;
     Ok(d)
 }
 
@@ -439,31 +434,14 @@ impl Simulation {
         let sim = &self.sim;
         let model = &sim.model;
         let ne = model.n_elements();
-        let mut strain = vec![0.0; 6 * ne];
-        let mut stress = vec![0.0; 6 * ne];
-        let mut damage = vec![0.0; 11 * ne];
-        let mut region = vec![0.0; ne];
-        for g in &model.groups {
-            let ss = g.element_strain_stress(&sim.u);
-            let dmg = g.element_damage_fields();
-            for (le, &e) in g.elements.iter().enumerate() {
-                let e = e as usize;
-                strain[6 * e..6 * e + 6].copy_from_slice(&ss[le].0);
-                stress[6 * e..6 * e + 6].copy_from_slice(&ss[le].1);
-                if let Some(d) = &dmg {
-                    damage[11 * e..11 * e + 11].copy_from_slice(&d[le]);
-                }
-                region[e] = g.region as f64;
-            }
-        }
-        let pick = |k: usize| -> Vec<f64> { (0..ne).map(|e| damage[11 * e + k]).collect() };
+        let ef = dcfm::element::fields::ElementFields::of(model, &sim.u);
         let d = PyDict::new(py);
         d.set_item("displacement", nodes3(py, &sim.u))?;
         d.set_item("velocity", nodes3(py, &sim.v))?;
         d.set_item("acceleration", nodes3(py, &sim.a))?;
-        d.set_item("strain", matrix(py, ne, 6, strain))?;
-        d.set_item("stress", matrix(py, ne, 6, stress))?;
-        d.set_item("region", vector(py, region))?;
+        d.set_item("strain", matrix(py, ne, 6, ef.strain.clone()))?;
+        d.set_item("stress", matrix(py, ne, 6, ef.stress.clone()))?;
+        d.set_item("region", vector(py, ef.region.clone()))?;
         for (k, name) in [
             "damage",
             "damage_tension",
@@ -474,12 +452,9 @@ impl Simulation {
         .iter()
         .enumerate()
         {
-            d.set_item(name, vector(py, pick(k)))?;
+            d.set_item(name, vector(py, ef.damage_values(k, 1)))?;
         }
-        let plastic: Vec<f64> = (0..ne)
-            .flat_map(|e| damage[11 * e + 5..11 * e + 11].to_vec())
-            .collect();
-        d.set_item("plastic_strain", matrix(py, ne, 6, plastic))?;
+        d.set_item("plastic_strain", matrix(py, ne, 6, ef.damage_values(5, 6)))?;
         if let Some(c) = &model.contact {
             let n = model.mesh.n_nodes();
             for (name, comps, values) in c.node_fields(n) {

@@ -3,6 +3,7 @@
 //! the stable time step.
 
 pub mod colouring;
+pub mod fields;
 pub mod groups;
 pub mod hex8_full;
 pub mod hex8_uniform;

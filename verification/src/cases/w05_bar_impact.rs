@@ -37,7 +37,7 @@ use dcfm::Result;
 use crate::models::contact_blocks::{
     block, centre_of_mass, elastic, interface_forces, region_nodes,
 };
-use crate::record::{CaseOutput, Check};
+use crate::record::{CaseOutput, Check, Series};
 
 /// The case title (the `case` of its rows).
 pub const TITLE: &str = "W5 bar impact";
@@ -49,7 +49,7 @@ const L: f64 = 2.0;
 const V0: f64 = 1.0;
 
 /// What one impact measured.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Debug, Default)]
 pub struct ImpactMeasures {
     /// Time-averaged interface force over the contact (N).
     pub plateau: f64,
@@ -69,6 +69,9 @@ pub struct ImpactMeasures {
     /// Largest |energy residual| / largest energy over the run.
     pub energy_residual: f64,
     pub dt: f64,
+    /// Time of every step (s) and the interface force Σλ then (N), for the plot.
+    pub times: Vec<f64>,
+    pub forces: Vec<f64>,
 }
 
 /// Build the two bars; `wall`: the target is fixed (rigid wall).
@@ -119,6 +122,9 @@ pub fn measure(elements_per_bar: usize, wall: bool) -> Result<ImpactMeasures> {
     while sim.time < 3e-3 {
         sim.step()?;
         let (f, _, _) = interface_forces(&sim, 0);
+        // The force of step n acts over [tⁿ, tⁿ⁺¹]: plotted at tⁿ.
+        m.times.push(sim.time - sim.dt);
+        m.forces.push(f);
         if f > 0.0 && t_off.is_none() {
             t_on.get_or_insert(sim.time - sim.dt);
             m.impulse += f * sim.dt;
@@ -149,6 +155,19 @@ pub fn run() -> Result<CaseOutput> {
     let f_bars = RHO * c * 1.0 * V0 / 2.0;
     let m = measure(320, false)?;
     let p0 = m.bar_mass * V0;
+    let reference = m
+        .times
+        .iter()
+        .map(|&t| if (0.0..t_c).contains(&t) { f_bars } else { 0.0 })
+        .collect();
+    let series = vec![Series::new(
+        TITLE,
+        "two bars: interface force",
+        ("time (s)", "contact force Σλ (N)"),
+        m.times.clone(),
+        m.forces.clone(),
+        Some(reference),
+    )];
     check
         .relative(
             "bars: plateau force ρcAv0/2 (N)",
@@ -237,5 +256,8 @@ pub fn run() -> Result<CaseOutput> {
             w.energy_residual,
             "docs/verification_references.md §W12",
         );
-    Ok(check.finish().into())
+    Ok(CaseOutput {
+        rows: check.finish(),
+        series,
+    })
 }

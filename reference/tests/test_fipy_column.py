@@ -180,7 +180,7 @@ def dcfm_transfer():
     case = column_case()
     top = int(case.nodes_of("layer1.zmax")[0])
     base = int(case.nodes_of("layer0.zmin")[0])
-    run = case.run(nodes=[base, top], elements=[])
+    run = case.run(nodes=[base, top], elements=[], threads=1)
     v = run.velocity[:, :, 0]
     t = run.time - 0.5 * case.dt  # half-step velocities
 

@@ -308,7 +308,7 @@ def plot_history(history: list[dict[str, Any]], drops: list[Drop]) -> str | None
     configs = history_configs(history)
     if not configs:
         return None
-    fig, ax = plt.subplots(figsize=(7.5, 4.0))
+    fig, ax = plt.subplots(figsize=(8.0, 4.2))
     flagged = {(d.config, d.line) for d in drops}
     commits: list[str] = []
     for recs in configs.values():
@@ -329,7 +329,8 @@ def plot_history(history: list[dict[str, Any]], drops: list[Drop]) -> str | None
     ax.set_ylabel("element updates / s")
     ax.set_title("Throughput over commits (× = drop of more than 10 %)", fontsize=10)
     ax.grid(True, alpha=0.3)
-    ax.legend(fontsize=6, ncol=2)
+    # Many configurations: the legend goes beside the axes, not over the data.
+    ax.legend(fontsize=7, ncol=1, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)
     return _png(fig)
 
 
@@ -582,6 +583,7 @@ def build(inp: Inputs) -> tuple[str, str, list[str]]:
             rep.h(f'<figure class="wide"><img alt="throughput history" src="data:image/png;base64,{img}"></figure>')
         rep.m("Standard runs of the throughput runner (`benchmarks/history.jsonl`). Drops of more than 10 % against the previous record of the same configuration:\n")
         if drops:
+            rep.h("<h3>Drops of more than 10 %</h3>")
             rep.h('<div class="scroll"><table><thead><tr><th>configuration</th><th>commit</th><th>line</th><th>before</th><th>after</th><th>change</th><th>cpu share</th></tr></thead><tbody>')
             rep.m("| configuration | commit | line | before | after | change | cpu share |\n|---|---|---:|---:|---:|---:|---:|")
             for d in drops:
@@ -595,6 +597,7 @@ def build(inp: Inputs) -> tuple[str, str, list[str]]:
         latest: dict[str, dict[str, Any]] = {}
         for key, recs in history_configs(inp.history).items():
             latest[key] = recs[-1]
+        rep.h("<h3>Latest record of each configuration</h3>")
         rep.h('<div class="scroll"><table><thead><tr><th>configuration</th><th>latest commit</th><th>element updates/s</th><th>cpu share</th></tr></thead><tbody>')
         rep.m("| configuration | latest commit | element updates/s | cpu share |\n|---|---|---:|---:|")
         for key, r in latest.items():
@@ -670,7 +673,7 @@ td:nth-child(2), td:nth-child(3), td:nth-child(4), td:nth-child(5) { font-varian
 .toc li { break-inside: avoid; }
 .plots { display: grid; grid-template-columns: repeat(auto-fill, minmax(440px, 1fr)); gap: 12px; margin-top: 12px; }
 figure { margin: 0; background: #fff; border: 1px solid var(--line); border-radius: 4px; padding: 6px; }
-figure.wide { max-width: 900px; }
+figure.wide { max-width: 1100px; }
 figure img { width: 100%; height: auto; display: block; }
 figcaption { font-size: 0.85em; color: var(--muted); text-align: center; }
 code { background: #eef1f6; padding: 0 3px; border-radius: 3px; }

@@ -9,9 +9,12 @@ cd "$(dirname "$0")/.."
 
 status=0
 bash scripts/setup.sh
-cargo build --release   # the default members; the module was built by setup.sh
+# The whole workspace with every target: the same feature resolution as the tests'
+# `cargo test --workspace --release`, so the two share one build of the dependencies
+# (a `cargo run -p` would resolve features for one package and rebuild them).
+cargo build --release --workspace --all-targets
 echo "main: verification cases"
-cargo run --release -q -p dcfm-verification || status=1
+"${CARGO_TARGET_DIR:-target}/release/dcfm-verification" || status=1
 echo "main: cross-checks"
 .venv/bin/python -m pytest -q reference/tests || status=1
 echo "main: report"

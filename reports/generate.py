@@ -316,10 +316,13 @@ def plot_history(history: list[dict[str, Any]], drops: list[Drop]) -> str | None
             if r["commit"] not in commits:
                 commits.append(r["commit"])
     pos = {c: i for i, c in enumerate(commits)}
-    for key, recs in configs.items():
+    markers = ["o", "s", "^", "D"]
+    for k, (key, recs) in enumerate(configs.items()):
         xs = [pos[r["commit"]] for r in recs]
         ys = [r["element_updates_per_s"] for r in recs]
-        (line,) = ax.plot(xs, ys, "o-", ms=3, lw=1.2, label=key)
+        # Ten colours repeat: the marker and line style tell the next ten apart.
+        style = ["-", "--", ":", "-."][(k // 10) % 4]
+        ax.plot(xs, ys, style, marker=markers[(k // 10) % 4], ms=3, lw=1.2, label=key)
         fx = [pos[r["commit"]] for r in recs if (key, r["_line"]) in flagged]
         fy = [r["element_updates_per_s"] for r in recs if (key, r["_line"]) in flagged]
         if fx:
@@ -392,7 +395,7 @@ def row_table(rep: Report, rows: list[dict[str, Any]], peer: bool) -> None:
     cols = ["quantity", "reference", "computed", "error", "tolerance", "result", "source"]
     if peer:
         cols.insert(6, "peer")
-    rep.h('<div class="scroll"><table><thead><tr>' + "".join(f"<th>{c}</th>" for c in cols) + "</tr></thead><tbody>")
+    rep.h('<div class="scroll"><table class="rows"><thead><tr>' + "".join(f"<th>{c}</th>" for c in cols) + "</tr></thead><tbody>")
     rep.m("| " + " | ".join(cols) + " |\n|" + "|".join("---" if c in ("quantity", "source", "peer") else "---:" for c in cols) + "|")
     for r in rows:
         cells = [
@@ -684,7 +687,7 @@ code { background: #eef1f6; padding: 0 3px; border-radius: 3px; }
   dl { grid-template-columns: 1fr; }
   dt { margin-top: 6px; }
   .plots { grid-template-columns: 1fr; }
-  .scroll table { min-width: 600px; }
+  .scroll table.rows { min-width: 600px; }
   article { padding: 4px 8px 10px; }
 }
 </style>

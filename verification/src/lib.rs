@@ -1,6 +1,7 @@
 //! Verification suite of dcfm: analytic reference solutions (library types shared by the
-//! tests, the runner and the report), one file per case, and the runner that writes
-//! `results.json` and `reports/verification.md`.
+//! tests and the runner), one file per case with its metadata in the registry
+//! ([`cases::all`]), and the runner that writes `results.json` and `series.json`, from
+//! which `reports/generate.py` writes the report.
 
 // Index loops over the fixed-size arrays of the kernels (8 nodes, 3 directions, 6 Voigt
 // components) read like the equations they implement and vectorise as well as iterators.
@@ -10,6 +11,5 @@ pub mod analytic;
 pub mod cases;
 pub mod models;
 pub mod record;
-pub mod report;
 
-pub use record::{Check, CheckRow};
+pub use record::{CaseOutput, Check, CheckRow, Series};

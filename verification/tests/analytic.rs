@@ -1,6 +1,6 @@
 //! Analytic verification cases: each registered case must pass every checked quantity.
 //! Requirement: the explicit core reproduces the closed-form references of
-//! VERIFICATION.md within their stated tolerances.
+//! docs/verification_references.md within their stated tolerances.
 
 use dcfm_verification::cases;
 use dcfm_verification::record::failures;
@@ -8,9 +8,9 @@ use dcfm_verification::record::failures;
 fn run_case(id: &str) {
     let case = cases::all()
         .into_iter()
-        .find(|c| c.id == id)
+        .find(|c| c.info.id == id)
         .expect("registered case");
-    let rows = (case.run)().unwrap_or_else(|e| panic!("{id}: {e}"));
+    let rows = (case.run)().unwrap_or_else(|e| panic!("{id}: {e}")).rows;
     assert!(!rows.is_empty(), "{id} checked nothing");
     let failed = failures(&rows);
     assert!(failed.is_empty(), "{id}:\n{}", failed.join("\n"));
@@ -48,7 +48,7 @@ fn w13_stable_step() {
 
 #[test]
 fn every_case_is_tested_here() {
-    let ids: Vec<&str> = cases::all().iter().map(|c| c.id).collect();
+    let ids: Vec<&str> = cases::all().iter().map(|c| c.info.id).collect();
     let covered = [
         "W1", "patch", "energy", "W10", "W11", "W13", "W1-conv", "W5", "W6", "W7", "W8", "W9",
         "bonded", "drop", "W15a", "W15b", "W15c", "W15d", "W15e", "W15f", // boundaries.rs:

@@ -1,7 +1,7 @@
 //! Contact verification cases (W5–W9, W12 rows, bonded = monolithic, drop and bounce):
 //! each registered case must pass every checked quantity.
 //! Requirement: the dynamic contact force method reproduces the references of
-//! VERIFICATION.md W5–W9 and W12 within their stated tolerances.
+//! docs/verification_references.md §W5–W9 and W12 within their stated tolerances.
 
 use dcfm_verification::cases;
 use dcfm_verification::record::failures;
@@ -9,9 +9,9 @@ use dcfm_verification::record::failures;
 fn run_case(id: &str) {
     let case = cases::all()
         .into_iter()
-        .find(|c| c.id == id)
+        .find(|c| c.info.id == id)
         .expect("registered case");
-    let rows = (case.run)().unwrap_or_else(|e| panic!("{id}: {e}"));
+    let rows = (case.run)().unwrap_or_else(|e| panic!("{id}: {e}")).rows;
     assert!(!rows.is_empty(), "{id} checked nothing");
     for r in &rows {
         println!(

@@ -9,9 +9,9 @@ use dcfm_verification::record::failures;
 fn run_case(id: &str) {
     let case = cases::all()
         .into_iter()
-        .find(|c| c.id == id)
+        .find(|c| c.info.id == id)
         .expect("registered case");
-    let rows = (case.run)().unwrap_or_else(|e| panic!("{id}: {e}"));
+    let rows = (case.run)().unwrap_or_else(|e| panic!("{id}: {e}")).rows;
     assert!(!rows.is_empty(), "{id} checked nothing");
     let failed = failures(&rows);
     assert!(failed.is_empty(), "{id}:\n{}", failed.join("\n"));

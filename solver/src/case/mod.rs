@@ -7,5 +7,5 @@
 mod build;
 mod schema;
 
-pub use build::{load_case, parse_case, Case};
+pub use build::{build_materials, load_case, parse_case, Case};
 pub use schema::*;

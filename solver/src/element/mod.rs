@@ -5,6 +5,7 @@
 pub mod anchor_bar;
 pub mod anchor_pattern;
 pub mod colouring;
+pub mod fields;
 pub mod groups;
 pub mod hex8_full;
 pub mod hex8_uniform;

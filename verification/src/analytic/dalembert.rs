@@ -1,5 +1,5 @@
 //! d'Alembert solution of a half-sine velocity pulse entering a 1D elastic column
-//! (VERIFICATION.md W1): v_base(t) = v0 sin(πt/T) for 0 ≤ t ≤ T.
+//! (docs/verification_references.md §W1): v_base(t) = v0 sin(πt/T) for 0 ≤ t ≤ T.
 
 /// Shape of the base velocity pulse.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]

@@ -72,7 +72,7 @@ pub struct LayerOnHalfSpace {
 }
 
 impl LayerOnHalfSpace {
-    /// VERIFICATION.md W3: V_s 300 m/s, H 30 m, ρ_s 2000 kg/m³ over V_r 1500 m/s,
+    /// docs/verification_references.md §W3: V_s 300 m/s, H 30 m, ρ_s 2000 kg/m³ over V_r 1500 m/s,
     /// ρ_r 2500 kg/m³ (impedance ratio 0.16).
     pub fn w3(damping: SoilDamping) -> Self {
         Self {

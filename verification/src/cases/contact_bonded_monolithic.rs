@@ -33,7 +33,10 @@ use dcfm::stage::Simulation;
 use dcfm::{DcfmError, Result};
 
 use crate::models::contact_blocks::{block, elastic};
-use crate::record::{Check, CheckRow};
+use crate::record::{CaseOutput, Check};
+
+/// The case title (the `case` of its rows).
+pub const TITLE: &str = "bonded = monolithic";
 
 const SOURCE: &str = "merged-node mesh (same model without split)";
 const H: f64 = 200.0;
@@ -132,9 +135,9 @@ pub fn measure() -> Result<(f64, usize, u64)> {
 }
 
 /// Run the comparison.
-pub fn run() -> Result<Vec<CheckRow>> {
+pub fn run() -> Result<CaseOutput> {
     let (diff, not_bonded, _) = measure()?;
-    let mut ch = Check::new("bonded = monolithic");
+    let mut ch = Check::new(TITLE);
     ch.absolute(
         "max |u_split − u_merged| / max |u| over the run",
         0.0,
@@ -149,5 +152,5 @@ pub fn run() -> Result<Vec<CheckRow>> {
         0.0,
         SOURCE,
     );
-    Ok(ch.finish())
+    Ok(ch.finish().into())
 }

@@ -6,7 +6,7 @@
 //! Set-up: W1 P column with a free top, Courant 0.5 (at Courant 1 the lumped 1D scheme is
 //! exact), h = 4, 2, 1, 0.5 m. Quantity: RMS (in time) error of the mid-height displacement
 //! against d'Alembert during the incident passage, relative to the net displacement.
-//! Reference: fitted log-log slope 2 (VERIFICATION.md W1, convergence); tolerance ±0.25.
+//! Reference: fitted log-log slope 2 (docs/verification_references.md §W1, convergence); tolerance ±0.25.
 //!
 //! The order is checked on the smooth sin² pulse: the W1 half-sine velocity has corners at
 //! its start and end, its spectrum decays only as k⁻², and the dispersion error of such a
@@ -18,7 +18,10 @@ use dcfm::Result;
 use crate::analytic::PulseShape;
 use crate::cases::w01_wave_pulses::measure;
 use crate::models::column::{ColumnSetup, TopEnd, Wave};
-use crate::record::{Check, CheckRow};
+use crate::record::{CaseOutput, Check, Series};
+
+/// The case title (the `case` of its rows).
+pub const TITLE: &str = "W1 convergence (P sin² pulse, Courant 0.5)";
 
 /// (h, error) pairs for a pulse shape.
 pub fn table(shape: PulseShape) -> Result<Vec<(f64, f64)>> {
@@ -47,15 +50,29 @@ pub fn fitted_slope(table: &[(f64, f64)]) -> f64 {
 }
 
 /// Run the convergence study.
-pub fn run() -> Result<Vec<CheckRow>> {
+pub fn run() -> Result<CaseOutput> {
     let t = table(PulseShape::SineSquared)?;
-    let mut check = Check::new("W1 convergence (P sin² pulse, Courant 0.5)");
+    let mut check = Check::new(TITLE);
     check.absolute(
         "fitted slope of RMS displacement error vs h",
         2.0,
         fitted_slope(&t),
         0.25,
-        "VERIFICATION.md W1",
+        "docs/verification_references.md §W1",
     );
-    Ok(check.finish())
+    // The error against h with the order-2 line through the finest mesh's point.
+    let (h0, e0) = *t.last().expect("four meshes");
+    let series = Series::new(
+        TITLE,
+        "RMS displacement error vs element size (line: order 2)",
+        ("element size h (m)", "relative RMS error"),
+        t.iter().map(|p| p.0).collect(),
+        t.iter().map(|p| p.1).collect(),
+        Some(t.iter().map(|p| e0 * (p.0 / h0).powi(2)).collect()),
+    )
+    .log_log();
+    Ok(CaseOutput {
+        rows: check.finish(),
+        series: vec![series],
+    })
 }

@@ -23,7 +23,10 @@ use dcfm::model::{Model, RegionSetup};
 use dcfm::stage::Simulation;
 use dcfm::Result;
 
-use crate::record::{Check, CheckRow};
+use crate::record::{CaseOutput, Check};
+
+/// The case title (the `case` of its rows).
+pub const TITLE: &str = "Energy conservation, undamped free vibration";
 
 const SOURCE: &str = "conservation of energy (undamped, no load)";
 
@@ -80,8 +83,8 @@ pub fn measure(integration: Integration, steps: usize) -> Result<([f64; 2], [f64
 }
 
 /// Run for both integrations.
-pub fn run() -> Result<Vec<CheckRow>> {
-    let mut check = Check::new("Energy conservation, undamped free vibration");
+pub fn run() -> Result<CaseOutput> {
+    let mut check = Check::new(TITLE);
     for (name, integ) in [
         ("one-point", Integration::OnePoint),
         ("full", Integration::Full),
@@ -102,5 +105,5 @@ pub fn run() -> Result<Vec<CheckRow>> {
             SOURCE,
         );
     }
-    Ok(check.finish())
+    Ok(check.finish().into())
 }

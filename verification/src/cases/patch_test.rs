@@ -18,7 +18,10 @@ use dcfm::model::{Model, RegionSetup};
 use dcfm::stage::Simulation;
 use dcfm::Result;
 
-use crate::record::{Check, CheckRow};
+use crate::record::{CaseOutput, Check};
+
+/// The case title (the `case` of its rows).
+pub const TITLE: &str = "Patch test (constant strain)";
 
 const SOURCE: &str = "exact linear field (patch test, MacNeal & Harder 1985)";
 
@@ -94,8 +97,8 @@ pub fn measure(integration: Integration) -> Result<(f64, f64)> {
 }
 
 /// Run the patch test for both integration rules.
-pub fn run() -> Result<Vec<CheckRow>> {
-    let mut check = Check::new("Patch test (constant strain)");
+pub fn run() -> Result<CaseOutput> {
+    let mut check = Check::new(TITLE);
     for (name, integ) in [
         ("one-point + hourglass", Integration::OnePoint),
         ("full 2×2×2", Integration::Full),
@@ -117,5 +120,5 @@ pub fn run() -> Result<Vec<CheckRow>> {
                 SOURCE,
             );
     }
-    Ok(check.finish())
+    Ok(check.finish().into())
 }

@@ -12,7 +12,7 @@
 //!
 //! Default rock E 20 GPa, ν 0.25, ρ 2700 kg/m³ (c_p 2981.42, c_s 1721.33 m/s); Δt = 0.9 h/c_p
 //! (P Courant 0.9, S Courant 0.52); ≥ 34 elements per pulse length.
-//! Reference: d'Alembert's solution, VERIFICATION.md W1 (σ = ρ c v0: P 0.8050 MPa,
+//! Reference: d'Alembert's solution, docs/verification_references.md §W1 (σ = ρ c v0: P 0.8050 MPa,
 //! S 0.4648 MPa; free end 2 v0 and 2.5465 mm; fixed end 2ρ c v0; net 1.2732 mm).
 //! Tolerances (W1): peaks ±3 % (lumped-mass central difference disperses ≤ 2 % at ≥ 20
 //! elements per pulse), arrival ±2Δt, doubling 2.00 ± 0.06, net displacement ±1 %.
@@ -21,12 +21,15 @@ use dcfm::Result;
 
 use crate::analytic::HalfSinePulse1D;
 use crate::models::column::{element_at, node_at, ColumnSetup, TopEnd, Wave};
-use crate::record::{Check, CheckRow};
+use crate::record::{CaseOutput, Check, Series};
 
-const SOURCE: &str = "VERIFICATION.md W1 (d'Alembert)";
+/// The case title (the `case` of its rows).
+pub const TITLE: &str = "W1 1D P and S pulses";
+
+const SOURCE: &str = "docs/verification_references.md §W1 (d'Alembert)";
 
 /// What one column run measured.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Debug, Default)]
 pub struct ColumnMeasures {
     /// Peak |stress| at the mid-height element before the top reflection returns (Pa).
     pub mid_peak_stress: f64,
@@ -48,6 +51,14 @@ pub struct ColumnMeasures {
     pub dt: f64,
     /// Largest |energy residual| over the run / largest energy over the run (W12).
     pub energy_residual: f64,
+    /// Time of every step (s), with the mid-node displacement and d'Alembert's there
+    /// (incident and reflected waves), and
+    /// the top-node velocity and d'Alembert's free-end velocity there (for the plots).
+    pub times: Vec<f64>,
+    pub mid_displacement: Vec<f64>,
+    pub mid_displacement_reference: Vec<f64>,
+    pub top_velocity: Vec<f64>,
+    pub top_velocity_reference: Vec<f64>,
 }
 
 /// Run one column and measure it.
@@ -72,6 +83,7 @@ pub fn measure(setup: &ColumnSetup) -> Result<ColumnMeasures> {
         ..Default::default()
     };
     let z_mid_node = sim.model.mesh.coords[mid_n][2];
+    let reflection = if setup.top == TopEnd::Free { 1.0 } else { -1.0 };
     let t_end = 2.0 * h / c;
     let mut l2 = 0.0;
     let mut l2_n = 0usize;
@@ -97,6 +109,19 @@ pub fn measure(setup: &ColumnSetup) -> Result<ColumnMeasures> {
         if t <= 2.0 * h / c {
             m.top_displacement = sim.u[top_n][dof];
         }
+        m.times.push(t);
+        m.mid_displacement.push(sim.u[mid_n][dof]);
+        // Incident wave plus its reflection at the top (image source at 2H − z; same sign
+        // at a free end, opposite at a fixed one).
+        m.mid_displacement_reference.push(
+            pulse.displacement(z_mid_node, t)
+                + reflection * pulse.displacement(2.0 * h - z_mid_node, t),
+        );
+        // Half-step velocity V^{n−½} against the doubled incident velocity at the free
+        // end (d'Alembert: incident + reflected), sampled at t − Δt/2.
+        m.top_velocity.push(sim.v[top_n][dof]);
+        m.top_velocity_reference
+            .push(2.0 * pulse.velocity(h, t - 0.5 * sim.dt));
         max_residual = max_residual.max(sim.energies.residual().abs());
         max_scale = max_scale.max(sim.energies.scale());
     }
@@ -106,8 +131,9 @@ pub fn measure(setup: &ColumnSetup) -> Result<ColumnMeasures> {
 }
 
 /// Run W1: P and S, free and fixed top.
-pub fn run() -> Result<Vec<CheckRow>> {
-    let mut check = Check::new("W1 1D P and S pulses");
+pub fn run() -> Result<CaseOutput> {
+    let mut check = Check::new(TITLE);
+    let mut series = Vec::new();
     for wave in [Wave::P, Wave::S] {
         let name = if wave == Wave::P { "P" } else { "S" };
         let free = ColumnSetup::w1(wave, TopEnd::Free);
@@ -115,6 +141,25 @@ pub fn run() -> Result<Vec<CheckRow>> {
         let pulse =
             HalfSinePulse1D::new(free.v0, free.period, c, free.density).expect("valid pulse");
         let mf = measure(&free)?;
+        series.push(Series::new(
+            TITLE,
+            &format!(
+                "{name}, free top: displacement at z = {:.0} m",
+                0.5 * free.height
+            ),
+            ("time (s)", "displacement (m)"),
+            mf.times.clone(),
+            mf.mid_displacement.clone(),
+            Some(mf.mid_displacement_reference.clone()),
+        ));
+        series.push(Series::new(
+            TITLE,
+            &format!("{name}, free top: velocity of the top node"),
+            ("time (s)", "velocity (m/s)"),
+            mf.times.clone(),
+            mf.top_velocity.clone(),
+            Some(mf.top_velocity_reference.clone()),
+        ));
         check
             .relative(
                 &format!("{name}: incident stress ρcv0 (Pa)"),
@@ -166,9 +211,12 @@ pub fn run() -> Result<Vec<CheckRow>> {
                 0.0,
                 m.energy_residual,
                 0.01,
-                "VERIFICATION.md W12 (residual ≤ 1–2 %)",
+                "docs/verification_references.md §W12 (residual ≤ 1–2 %)",
             );
         }
     }
-    Ok(check.finish())
+    Ok(CaseOutput {
+        rows: check.finish(),
+        series,
+    })
 }

@@ -15,7 +15,7 @@
 //!
 //! Default rock E 20 GPa, ν 0.25, ρ 2700 kg/m³ (c_p 2981.42, c_s 1721.33 m/s), h = 1 m,
 //! Δt = 0.9 × the model's critical step (3D element bound).
-//! References (VERIFICATION.md W2): dashpots exact at normal incidence — reflected
+//! References (docs/verification_references.md §W2): dashpots exact at normal incidence — reflected
 //! amplitude < 1 % of the incident one; the S half-sine pulse v0 = 0.1 m/s, T = 0.02 s
 //! carries ρ c_s v0² T/2 = 464.76 J/m² (P: ρ c_p v0² T/2 = 804.98 J/m²), absorbed within
 //! 1 %; surface / incident = 2.00 ± 2 % independent of K (d'Alembert: a free surface
@@ -29,7 +29,11 @@ use dcfm::Result;
 
 use crate::record::{Check, CheckRow};
 
-const SOURCE: &str = "VERIFICATION.md W2 (Lysmer–Kuhlemeyer; Deeks & Randolph; Liu et al. 2006)";
+/// Title of the case (the `case` of its rows).
+pub const TITLE: &str = "W2 absorbing boundaries and seismic input";
+
+const SOURCE: &str =
+    "docs/verification_references.md §W2 (Lysmer–Kuhlemeyer; Deeks & Randolph; Liu et al. 2006)";
 
 const ROCK: &str = r#"
 [materials.rock]
@@ -293,7 +297,7 @@ history = {{ type = "sine_squared", amplitude = 1.0, period = 0.02 }}
 
 /// Run W2.
 pub fn run() -> Result<Vec<CheckRow>> {
-    let mut check = Check::new("W2 absorbing boundaries and seismic input");
+    let mut check = Check::new(TITLE);
     for (wave, energy) in [('P', 804.98), ('S', 464.76)] {
         let (r, absorbed, residual) = dashpot_column(wave)?;
         check
@@ -316,7 +320,7 @@ pub fn run() -> Result<Vec<CheckRow>> {
                 0.0,
                 residual,
                 0.01,
-                "VERIFICATION.md W12 (residual ≤ 1–2 %)",
+                "docs/verification_references.md §W12 (residual ≤ 1–2 %)",
             );
     }
     let mut ratios = Vec::new();

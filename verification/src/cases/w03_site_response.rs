@@ -12,7 +12,7 @@
 //!
 //! The transfer function H(f) = S(f) / (2 I(f)) — the surface velocity's spectrum over
 //! twice the incident one (a broadband half-sine pulse, T = 0.02 s) — against Kramer's
-//! closed form (analytic::site_response, VERIFICATION.md W3): resonances
+//! closed form (analytic::site_response, docs/verification_references.md §W3): resonances
 //! f_n = (2n−1) V_s / 4H = 2.5, 7.5, 12.5 Hz ± 2 %, |H| = 6.25 at them and the listed
 //! values between (1.050, 1.228, 2.903, 2.903 at 0.5, 1, 2, 3 Hz; 1 at 5 and 10 Hz) ± 5 %;
 //! with ξ = 5 % in the soil, peaks 4.195, 2.495, 1.745 ± 5 %. Damping is Rayleigh in the
@@ -28,7 +28,10 @@ use dcfm::Result;
 use crate::analytic::{LayerOnHalfSpace, SoilDamping};
 use crate::record::{Check, CheckRow};
 
-const SOURCE: &str = "VERIFICATION.md W3 (Kramer 1996, §7.2)";
+/// Title of the case (the `case` of its rows).
+pub const TITLE: &str = "W3 soil layer on elastic half-space";
+
+const SOURCE: &str = "docs/verification_references.md §W3 (Kramer 1996, §7.2)";
 
 /// The case text, with Rayleigh damping tuned to ξ at f (Hz) in the soil when given.
 fn case_text(damped_at: Option<f64>, end: f64) -> String {
@@ -164,7 +167,7 @@ fn peak(h: &Histories, which: usize, f0: f64) -> (f64, f64) {
 
 /// Run W3.
 pub fn run() -> Result<Vec<CheckRow>> {
-    let mut check = Check::new("W3 soil layer on elastic half-space");
+    let mut check = Check::new(TITLE);
     let names = ["column", "3D centre", "3D corner"];
     let reference = LayerOnHalfSpace::w3(SoilDamping::None);
     let undamped = run_model(None, 8.0)?;

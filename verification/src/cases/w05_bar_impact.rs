@@ -15,7 +15,7 @@
 //! c = √(E/ρ)); rigid-wall variant: every node of the target fixed (w = 0).
 //! Parameters: E 30 GPa, ν 0, ρ 2400 kg/m³ (c 3535.53 m/s), A 1 m², L 2 m, 320 elements per
 //! bar, frictionless contact without cohesion (μs = μd = 0, c = 0), Δt = 0.9 Δt_crit.
-//! Reference (VERIFICATION.md W5, 1D wave theory): contact force ρcAv0/2 = 4.2426 MN for
+//! Reference (docs/verification_references.md §W5, 1D wave theory): contact force ρcAv0/2 = 4.2426 MN for
 //! 2L/c = 1.1314 ms, then the striker rests and the target moves at v0 (impulse 4800 N·s);
 //! against a rigid wall ρcAv0 = 8.485 MN (8.485 MPa on 1 m²) and rebound −v0.
 //! Measured: the interface force Σλ of the four pairs each step; the plateau is its time
@@ -37,16 +37,19 @@ use dcfm::Result;
 use crate::models::contact_blocks::{
     block, centre_of_mass, elastic, interface_forces, region_nodes,
 };
-use crate::record::{Check, CheckRow};
+use crate::record::{CaseOutput, Check, Series};
 
-const SOURCE: &str = "VERIFICATION.md W5 (1D wave theory)";
+/// The case title (the `case` of its rows).
+pub const TITLE: &str = "W5 bar impact";
+
+const SOURCE: &str = "docs/verification_references.md §W5 (1D wave theory)";
 const E: f64 = 30e9;
 const RHO: f64 = 2400.0;
 const L: f64 = 2.0;
 const V0: f64 = 1.0;
 
 /// What one impact measured.
-#[derive(Clone, Copy, Debug, Default)]
+#[derive(Clone, Debug, Default)]
 pub struct ImpactMeasures {
     /// Time-averaged interface force over the contact (N).
     pub plateau: f64,
@@ -66,6 +69,9 @@ pub struct ImpactMeasures {
     /// Largest |energy residual| / largest energy over the run.
     pub energy_residual: f64,
     pub dt: f64,
+    /// Time of every step (s) and the interface force Σλ then (N), for the plot.
+    pub times: Vec<f64>,
+    pub forces: Vec<f64>,
 }
 
 /// Build the two bars; `wall`: the target is fixed (rigid wall).
@@ -116,6 +122,9 @@ pub fn measure(elements_per_bar: usize, wall: bool) -> Result<ImpactMeasures> {
     while sim.time < 3e-3 {
         sim.step()?;
         let (f, _, _) = interface_forces(&sim, 0);
+        // The force of step n acts over [tⁿ, tⁿ⁺¹]: plotted at tⁿ.
+        m.times.push(sim.time - sim.dt);
+        m.forces.push(f);
         if f > 0.0 && t_off.is_none() {
             t_on.get_or_insert(sim.time - sim.dt);
             m.impulse += f * sim.dt;
@@ -139,13 +148,26 @@ pub fn measure(elements_per_bar: usize, wall: bool) -> Result<ImpactMeasures> {
 }
 
 /// Run W5: two bars, and the striker against a rigid wall.
-pub fn run() -> Result<Vec<CheckRow>> {
-    let mut check = Check::new("W5 bar impact");
+pub fn run() -> Result<CaseOutput> {
+    let mut check = Check::new(TITLE);
     let c = (E / RHO).sqrt();
     let t_c = 2.0 * L / c;
     let f_bars = RHO * c * 1.0 * V0 / 2.0;
     let m = measure(320, false)?;
     let p0 = m.bar_mass * V0;
+    let reference = m
+        .times
+        .iter()
+        .map(|&t| if (0.0..t_c).contains(&t) { f_bars } else { 0.0 })
+        .collect();
+    let series = vec![Series::new(
+        TITLE,
+        "two bars: interface force",
+        ("time (s)", "contact force Σλ (N)"),
+        m.times.clone(),
+        m.forces.clone(),
+        Some(reference),
+    )];
     check
         .relative(
             "bars: plateau force ρcAv0/2 (N)",
@@ -195,7 +217,7 @@ pub fn run() -> Result<Vec<CheckRow>> {
             -0.02,
             0.02,
             m.energy_residual,
-            "VERIFICATION.md W12",
+            "docs/verification_references.md §W12",
         );
     let w = measure(320, true)?;
     check
@@ -232,7 +254,10 @@ pub fn run() -> Result<Vec<CheckRow>> {
             -0.02,
             0.02,
             w.energy_residual,
-            "VERIFICATION.md W12",
+            "docs/verification_references.md §W12",
         );
-    Ok(check.finish())
+    Ok(CaseOutput {
+        rows: check.finish(),
+        series,
+    })
 }

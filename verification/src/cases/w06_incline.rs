@@ -28,7 +28,7 @@
 //! does not limit Δt).
 //! Measured: the plate's centre of mass (x, v) at t = 1 s after the ramp's midpoint, the gravity work m g·Δx_c,
 //! the contact's friction work, the kinetic energy ½ m v_c².
-//! Reference: VERIFICATION.md W6: 30°/μs 0.6 sticks; 30°/μs 0.5/μd 0.4 a = 1.5067 m/s²,
+//! Reference: docs/verification_references.md §W6: 30°/μs 0.6 sticks; 30°/μs 0.5/μd 0.4 a = 1.5067 m/s²,
 //! 0.7534 m in 1 s, gravity work 3695.22 J = friction 2560.12 J + kinetic 1135.10 J;
 //! 20°/μs 0.3/μd 0.25 a = 1.0506 m/s² (0.5253 m in 1 s).
 //! Tolerance ±1 % (W6); "sticks": |x_c| ≤ 1 % of the 0.7534 m slide; energy residual (W12)
@@ -42,9 +42,12 @@ use dcfm::stage::Simulation;
 use dcfm::Result;
 
 use crate::models::contact_blocks::{block, centre_of_mass, elastic, region_nodes};
-use crate::record::{Check, CheckRow};
+use crate::record::{CaseOutput, Check};
 
-const SOURCE: &str = "VERIFICATION.md W6 (rigid block, Coulomb friction)";
+/// The case title (the `case` of its rows).
+pub const TITLE: &str = "W6 block on an incline";
+
+const SOURCE: &str = "docs/verification_references.md §W6 (rigid block, Coulomb friction)";
 const G: f64 = 9.81;
 /// Stiffness-proportional damping: ξ = βω/2 ≈ 1 at the plate's first shear mode.
 const BETA: f64 = 4.1e-4;
@@ -164,8 +167,8 @@ pub fn measure(
 }
 
 /// Run W6 with pairs and with point-to-surface contact.
-pub fn run() -> Result<Vec<CheckRow>> {
-    let mut ch = Check::new("W6 block on an incline");
+pub fn run() -> Result<CaseOutput> {
+    let mut ch = Check::new(TITLE);
     let x_ref = 0.5 * 1.5067;
     for (surface, tag) in [(false, "pairs"), (true, "surface")] {
         let s = measure(30.0, 0.6, 0.4, surface, 1.0)?;
@@ -217,7 +220,7 @@ pub fn run() -> Result<Vec<CheckRow>> {
             -0.02,
             0.02,
             m.energy_residual,
-            "VERIFICATION.md W12",
+            "docs/verification_references.md §W12",
         );
         let sliding = if surface {
             m.sliding_surface
@@ -240,7 +243,7 @@ pub fn run() -> Result<Vec<CheckRow>> {
                 10.0,
                 1e6,
                 (m.x / 0.075).floor(),
-                "VERIFICATION.md W6 (large slip across many faces)",
+                "docs/verification_references.md §W6 (large slip across many faces)",
             );
         }
         if !surface {
@@ -254,5 +257,5 @@ pub fn run() -> Result<Vec<CheckRow>> {
             );
         }
     }
-    Ok(ch.finish())
+    Ok(ch.finish().into())
 }

@@ -24,7 +24,7 @@
 //!    t ≈ 0.55 s runs past 1 s, so the first cycle is shorter; from the second on every
 //!    cycle slides the same).
 //!
-//! Reference: VERIFICATION.md W7: V²/(2Ng)(1 − N/A) = 0.14715 m, slip ends at A t0/N = 0.5 s
+//! Reference: docs/verification_references.md §W7: V²/(2Ng)(1 − N/A) = 0.14715 m, slip ends at A t0/N = 0.5 s
 //! after the pulse start; one-way 0.17665 m per cycle (Newmark 1965).
 //! Tolerance ±3 % (W7; the slip end ±3 % of 0.5 s).
 
@@ -37,13 +37,18 @@ use dcfm::stage::Simulation;
 use dcfm::{DcfmError, Result};
 
 use crate::models::contact_blocks::{block, centre_of_mass, elastic, region_nodes};
-use crate::record::{Check, CheckRow};
+use crate::record::{CaseOutput, Check, Series};
 
-const SOURCE: &str = "VERIFICATION.md W7 (Newmark 1965)";
+/// The case title (the `case` of its rows).
+pub const TITLE: &str = "W7 Newmark sliding block";
+
+const SOURCE: &str = "docs/verification_references.md §W7 (Newmark 1965)";
 const G: f64 = 9.81;
 const PLATE: f64 = 0.02;
 const BETA: f64 = 4.1e-4;
 const RAMP: f64 = 0.01;
+/// Rectangular pulse (A, t0 (s), N, start (s)).
+const PULSE: (f64, f64, f64, f64) = (0.5, 0.2, 0.2, 0.05);
 
 /// Build the plate on a base with prescribed x acceleration `base_acc` (m/s² × history),
 /// gravity tilted by `sin_theta`, friction μ.
@@ -98,9 +103,26 @@ fn relative(sim: &Simulation, plate: &[u32], base: &[u32]) -> (f64, bool) {
     (up[0] - ub, p[2] + s[2] > 0)
 }
 
-/// Rectangular pulse: (|slip| (m), time from the pulse start to the end of sliding (s)).
-pub fn measure_pulse() -> Result<(f64, f64)> {
-    let (a, t0, n, ts) = (0.5, 0.2, 0.2, 0.05);
+/// Newmark's rigid-plastic slip |x_block − x_base| at time τ after the start of a
+/// rectangular base pulse A g of duration t0, yield acceleration N g (N < A): relative
+/// acceleration (A − N) g during the pulse, −N g after it until the relative velocity
+/// vanishes at τ = A t0/N.
+pub fn newmark_pulse_slip(a: f64, t0: f64, n: f64, tau: f64) -> f64 {
+    let rise = |t: f64| 0.5 * (a - n) * G * t * t;
+    if tau <= 0.0 {
+        0.0
+    } else if tau <= t0 {
+        rise(tau)
+    } else {
+        let s = tau.min(a * t0 / n) - t0;
+        rise(t0) + (a - n) * G * t0 * s - 0.5 * n * G * s * s
+    }
+}
+
+/// The rectangular-pulse run: (|slip| (m), time from the pulse start to the end of
+/// sliding (s), and the slip history (time, |slip|) at every step).
+pub fn pulse_history() -> Result<(f64, f64, Vec<f64>, Vec<f64>)> {
+    let (a, t0, n, ts) = PULSE;
     let mut sim = build(
         n,
         0.0,
@@ -113,13 +135,28 @@ pub fn measure_pulse() -> Result<(f64, f64)> {
     let plate = region_nodes(&sim.model.mesh, "top");
     let base = region_nodes(&sim.model.mesh, "base");
     let mut last_slide = 0.0;
+    let (mut times, mut slips) = (Vec::new(), Vec::new());
     while sim.time < ts + 0.8 {
         sim.step()?;
-        if relative(&sim, &plate, &base).1 {
+        let (rel, sliding) = relative(&sim, &plate, &base);
+        if sliding {
             last_slide = sim.time;
         }
+        times.push(sim.time);
+        slips.push(rel.abs());
     }
-    Ok((relative(&sim, &plate, &base).0.abs(), last_slide - ts))
+    Ok((
+        relative(&sim, &plate, &base).0.abs(),
+        last_slide - ts,
+        times,
+        slips,
+    ))
+}
+
+/// Rectangular pulse: (|slip| (m), time from the pulse start to the end of sliding (s)).
+pub fn measure_pulse() -> Result<(f64, f64)> {
+    let (slip, end, _, _) = pulse_history()?;
+    Ok((slip, end))
 }
 
 /// One-way sliding: slip between t = 1 s and t = 2 s (m).
@@ -148,9 +185,22 @@ pub fn measure_one_way() -> Result<f64> {
 }
 
 /// Run W7.
-pub fn run() -> Result<Vec<CheckRow>> {
-    let mut ch = Check::new("W7 Newmark sliding block");
-    let (slip, t_end) = measure_pulse()?;
+pub fn run() -> Result<CaseOutput> {
+    let mut ch = Check::new(TITLE);
+    let (slip, t_end, times, slips) = pulse_history()?;
+    let (a, t0, n, ts) = PULSE;
+    let reference = times
+        .iter()
+        .map(|&t| newmark_pulse_slip(a, t0, n, t - ts))
+        .collect();
+    let series = vec![Series::new(
+        TITLE,
+        "rectangular pulse: slip of the block on the base",
+        ("time (s)", "|slip| (m)"),
+        times,
+        slips,
+        Some(reference),
+    )];
     ch.relative(
         "pulse: slip V²/(2Ng)(1 − N/A) (m)",
         0.14715,
@@ -173,5 +223,8 @@ pub fn run() -> Result<Vec<CheckRow>> {
         0.03,
         SOURCE,
     );
-    Ok(ch.finish())
+    Ok(CaseOutput {
+        rows: ch.finish(),
+        series,
+    })
 }

@@ -17,7 +17,7 @@
 //!    along x from t = 0.02 s.
 //!
 //! Parameters: c = 0.2 MPa (tensile strength = c), μs 0.6, μd 0.45.
-//! Reference (VERIFICATION.md W8): cA = 50 kN, debond at t = 0.05 s; tensile capacity
+//! Reference (docs/verification_references.md §W8): cA = 50 kN, debond at t = 0.05 s; tensile capacity
 //! zero afterwards; recompression transmits the 50 kN; slip starts at cA + μs N = 80 kN
 //! (t = 0.1 s), the resistance falls to μd N = 22.5 kN.
 //! The four pairs carry equal loads; should round-off let some debond or slip a few steps
@@ -34,9 +34,12 @@ use dcfm::stage::Simulation;
 use dcfm::Result;
 
 use crate::models::contact_blocks::{block, elastic, interface_forces, region_nodes};
-use crate::record::{Check, CheckRow};
+use crate::record::{CaseOutput, Check};
 
-const SOURCE: &str = "VERIFICATION.md W8 (paper §2, eqs. (12)–(15))";
+/// The case title (the `case` of its rows).
+pub const TITLE: &str = "W8 cohesive bond";
+
+const SOURCE: &str = "docs/verification_references.md §W8 (paper §2, eqs. (12)–(15))";
 
 /// What the two W8 runs measured.
 #[derive(Clone, Copy, Debug, Default)]
@@ -175,9 +178,9 @@ pub fn measure() -> Result<BondMeasures> {
 }
 
 /// Run W8.
-pub fn run() -> Result<Vec<CheckRow>> {
+pub fn run() -> Result<CaseOutput> {
     let m = measure()?;
-    let mut ch = Check::new("W8 cohesive bond");
+    let mut ch = Check::new(TITLE);
     let tol_t = 2.0 * m.dt;
     ch.absolute(
         "tension: debond time (s)",
@@ -242,5 +245,5 @@ pub fn run() -> Result<Vec<CheckRow>> {
         0.01,
         SOURCE,
     );
-    Ok(ch.finish())
+    Ok(ch.finish().into())
 }

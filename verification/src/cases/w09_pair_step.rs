@@ -1,7 +1,7 @@
 //! W9 — one contact pair, one step, exact to round-off, through `ContactSystem::compute`.
 //!
 //! Goal: the pair law of eqs. (5)–(15) (trial stick force, bond, tension, sliding,
-//! separation) gives the table of VERIFICATION.md W9 exactly.
+//! separation) gives the table of docs/verification_references.md §W9 exactly.
 //!
 //! ```text
 //!   ┌────────┐ top (surface b side): nodes of mass 3
@@ -13,7 +13,7 @@
 //! are set by hand (1 on surface a, 1/3 on surface b), so each pair is W9's isolated pair.
 //! One step from rest with load f on every node of a: predictor V̄ = Δt w f, Ū = Δt² w f.
 //! Parameters: Δt = 1 ms, c = 5 Pa on 1 m² (cA = 5 N), μs = 0.5, μd = 0.4.
-//! Reference: VERIFICATION.md W9, eqs. (6)–(7): R = m_i m_j/((m_i + m_j) Δt²)(ũ_j − ũ_i).
+//! Reference: docs/verification_references.md §W9, eqs. (6)–(7): R = m_i m_j/((m_i + m_j) Δt²)(ũ_j − ũ_i).
 //! Signs (docs/contact.md §2): compression on a is −z (towards b), R on a.
 //! Tolerance 1e-10 relative (round-off; absolute 1e-10 N for zero references).
 
@@ -22,9 +22,12 @@ use dcfm::mesh::{BoxMeshSpec, Mesh};
 use dcfm::Result;
 
 use crate::models::contact_blocks::block;
-use crate::record::{Check, CheckRow};
+use crate::record::{CaseOutput, Check};
 
-const SOURCE: &str = "VERIFICATION.md W9, eqs. (6)–(15)";
+/// The case title (the `case` of its rows).
+pub const TITLE: &str = "W9 one pair one step";
+
+const SOURCE: &str = "docs/verification_references.md §W9, eqs. (6)–(15)";
 const DT: f64 = 1e-3;
 const TOL: f64 = 1e-10;
 
@@ -103,8 +106,8 @@ fn state_name(c: [usize; 4]) -> f64 {
 }
 
 /// Run W9 (every line of the table).
-pub fn run() -> Result<Vec<CheckRow>> {
-    let mut ch = Check::new("W9 one pair one step");
+pub fn run() -> Result<CaseOutput> {
+    let mut ch = Check::new(TITLE);
     let mut rig = Rig::new()?;
     let (ra, rb, c, s) = rig.step([0.0, 0.0, 20.0])?;
     ch.relative("20 N compressive: R_n on a (N)", -15.0, ra[2], TOL, SOURCE)
@@ -251,5 +254,5 @@ pub fn run() -> Result<Vec<CheckRow>> {
         0.0,
         SOURCE,
     );
-    Ok(ch.finish())
+    Ok(ch.finish().into())
 }

@@ -13,7 +13,7 @@
 //!
 //! Parameters (W10): E0 = 31027 MPa, ν 0.18, f_t0 2.9 MPa, G_t 200 N/m, a_t 0 (→ b_t = d_t
 //! = 14500 at l = 1 m), f_c0 13 MPa, f_c 24.1 MPa, G_c 10⁴ N/m, s0 = 0.
-//! References (VERIFICATION.md W10): at εᵖ = 1/b: σ = f_t0/e = 1.0669 MPa, D = 1 − 1/e =
+//! References (docs/verification_references.md §W10): at εᵖ = 1/b: σ = f_t0/e = 1.0669 MPa, D = 1 − 1/e =
 //! 0.632; g = ∫σ dεᵖ = G_t/l (200 J/m³ at 1 m); a_c = 5.2240; unloading slope (1−D)E0;
 //! full stiffness recovery after crack closure (E/E0 = 1 − D_c = 1 here); f_b0/f_c0 = 1.16.
 //! Tolerances (W10): curve 1 %, dissipated energy per crack area 2 %, slope 1 %; Kupfer
@@ -30,9 +30,12 @@ use dcfm::material::{Elastic, Material, PlasticDamage};
 use dcfm::Result;
 
 use crate::models::single_element::{build, point_state};
-use crate::record::{Check, CheckRow};
+use crate::record::{CaseOutput, Check};
 
-const SOURCE: &str = "VERIFICATION.md W10 (Lee & Fenves 1998)";
+/// The case title (the `case` of its rows).
+pub const TITLE: &str = "W10 plastic-damage, single element";
+
+const SOURCE: &str = "docs/verification_references.md §W10 (Lee & Fenves 1998)";
 const E0: f64 = 31027e6;
 const FT0: f64 = 2.9e6;
 const GT: f64 = 200.0;
@@ -197,8 +200,8 @@ pub fn compression() -> Result<(f64, f64, f64)> {
 }
 
 /// Run W10.
-pub fn run() -> Result<Vec<CheckRow>> {
-    let mut check = Check::new("W10 plastic-damage, single element");
+pub fn run() -> Result<CaseOutput> {
+    let mut check = Check::new(TITLE);
     let (s, d, g) = tension(1.0)?;
     check
         .relative(
@@ -237,7 +240,7 @@ pub fn run() -> Result<Vec<CheckRow>> {
             1.16,
             yb / yu,
             0.01,
-            "Kupfer et al. 1969; VERIFICATION.md W10",
+            "Kupfer et al. 1969; docs/verification_references.md §W10",
         );
     let (dt_turn, unload, closed) = cycle()?;
     check
@@ -255,5 +258,5 @@ pub fn run() -> Result<Vec<CheckRow>> {
             0.01,
             SOURCE,
         );
-    Ok(check.finish())
+    Ok(check.finish().into())
 }

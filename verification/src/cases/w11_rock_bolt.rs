@@ -19,7 +19,7 @@
 //! (d) Critical step of a bar of 0.5 m segments alone: l/c = 0.5/√(E/ρ) = 99.06 µs; the
 //!     model's step with the bar is below both the bar's and the host's.
 //!
-//! Reference: VERIFICATION.md W11. Tolerance ±1 % (N(x) within 1 % of P).
+//! Reference: docs/verification_references.md §W11. Tolerance ±1 % (N(x) within 1 % of P).
 
 use std::path::Path;
 
@@ -29,7 +29,7 @@ use dcfm::Result;
 
 use crate::record::{Check, CheckRow};
 
-const SOURCE: &str = "VERIFICATION.md W11";
+const SOURCE: &str = "docs/verification_references.md §W11";
 const E_BAR: f64 = 200e9;
 const DIAMETER: f64 = 0.028;
 const LENGTH: f64 = 6.0;

@@ -15,7 +15,7 @@
 //!
 //! Input: incident half-sine velocity pulses, x 0.01 m/s over 0.02 s (SV), y 0.006 m/s
 //! over 0.03 s (SH), z 0.008 m/s over 0.015 s (P). Reference: the model's own reference
-//! free-field column (a), the full-height model (b). Tolerance (VERIFICATION.md W14):
+//! free-field column (a), the full-height model (b). Tolerance (docs/verification_references.md §W14):
 //! every node within 2 % of the column at its depth (max |Δv| over time / max |v| of the
 //! column), and the truncated model within 2 % of the full one at −30 m and −50 m.
 
@@ -25,7 +25,10 @@ use dcfm::Result;
 
 use crate::record::{Check, CheckRow};
 
-const SOURCE: &str = "VERIFICATION.md W14";
+/// Title of the case (the `case` of its rows).
+pub const TITLE: &str = "W14 free-field boundaries";
+
+const SOURCE: &str = "docs/verification_references.md §W14";
 
 const MATERIALS: &str = r#"
 [materials.rock]
@@ -223,7 +226,7 @@ input = true
 
 /// Run W14.
 pub fn run() -> Result<Vec<CheckRow>> {
-    let mut check = Check::new("W14 free-field boundaries");
+    let mut check = Check::new(TITLE);
     let (worst, n) = uniform_model()?;
     check.within(
         &format!("laterally uniform model: max |v − v_column| / max |v_column| over all {n} nodes, x/y/z"),

@@ -8,7 +8,7 @@
 //!   H(t) = (t/2 − T sin(4πt/T)/(8π)) / (nT/2): t₅ and t₉₅ solved from it by bisection
 //! ```
 //!
-//! Reference: VERIFICATION.md W15 (Arias 1970; Trifunac & Brady 1975 for D5–95).
+//! Reference: docs/verification_references.md §W15 (Arias 1970; Trifunac & Brady 1975 for D5–95).
 //! Tolerance: 1e-12 relative on I_a (the trapezoidal sum of sin² over whole periods is
 //! exact); 1e-4 s on t₅, t₉₅ (linear interpolation of the sampled Husid curve, O(Δt²)).
 
@@ -18,7 +18,7 @@ use dcfm::Result;
 
 use crate::record::{Check, CheckRow};
 
-const SOURCE: &str = "VERIFICATION.md W15 (Arias intensity of a sine)";
+const SOURCE: &str = "docs/verification_references.md §W15 (Arias intensity of a sine)";
 
 /// The time where the closed-form Husid curve of the sine reaches `level`.
 fn husid_time(level: f64, period: f64, n: f64) -> f64 {

@@ -14,7 +14,7 @@
 //!       single pass is visibly asymmetric (checked so that this test can fail)
 //! ```
 //!
-//! Reference: VERIFICATION.md W15 (Oppenheim & Schafer §7.1). Tolerances: (a) 1e-12
+//! Reference: docs/verification_references.md §W15 (Oppenheim & Schafer §7.1). Tolerances: (a) 1e-12
 //! (round-off); (b) 1e-3 relative (the amplitude is measured over whole periods after the
 //! transients; the pads are not used); (c) 1e-9 of the peak.
 
@@ -23,7 +23,7 @@ use dcfm::Result;
 
 use crate::record::{Check, CheckRow};
 
-const SOURCE: &str = "VERIFICATION.md W15 (Butterworth corner gain, zero phase)";
+const SOURCE: &str = "docs/verification_references.md §W15 (Butterworth corner gain, zero phase)";
 
 /// Largest |design gain − textbook gain| over orders, sides and frequencies.
 pub fn design_error() -> f64 {

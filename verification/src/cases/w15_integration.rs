@@ -9,7 +9,7 @@
 //!   after removing the mean: v = A T/(2π)(1 − cos(2πt/T)), u = A T/(2π)(t − T/(2π) sin(2πt/T))
 //! ```
 //!
-//! Reference: VERIFICATION.md W15 (integration of an analytic motion). Tolerance 1e-6 of
+//! Reference: docs/verification_references.md §W15 (integration of an analytic motion). Tolerance 1e-6 of
 //! the peak (the trapezoidal rule on a sine: (ωΔt)²/12 ≈ 2e-7).
 
 use dcfm::motion::{process, read_str, AccelUnits, ProcessingOptions, ReadOptions};
@@ -17,7 +17,7 @@ use dcfm::Result;
 
 use crate::record::{Check, CheckRow};
 
-const SOURCE: &str = "VERIFICATION.md W15 (integration of an analytic motion)";
+const SOURCE: &str = "docs/verification_references.md §W15 (integration of an analytic motion)";
 
 /// (max |v − v_exact| / max |v|, max |u − u_exact| / max |u|, mean removed − c).
 pub fn errors() -> Result<(f64, f64, f64)> {

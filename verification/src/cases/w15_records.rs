@@ -14,7 +14,7 @@
 //! ```
 //!
 //! Reference: the files' headers (fixtures and provenance in
-//! `verification/fixtures/motions/PROVENANCE.md`); the AT2 PGA 0.503 g is VERIFICATION.md
+//! `verification/fixtures/motions/PROVENANCE.md`); the AT2 PGA 0.503 g is docs/verification_references.md
 //! W15's. Tolerances: npts exact; dt 1e-12; PGA to the header's last printed digit (half a
 //! unit of it: 0.0005 g, 0.05 cm/s², 0.0005 gal), the COSMOS one to its 5 printed decimals.
 
@@ -28,7 +28,7 @@ use dcfm::Result;
 use crate::record::{Check, CheckRow};
 
 const SOURCE: &str =
-    "file headers (verification/fixtures/motions/PROVENANCE.md), VERIFICATION.md W15";
+    "file headers (verification/fixtures/motions/PROVENANCE.md), docs/verification_references.md §W15";
 
 /// The fixture directory.
 pub fn fixtures() -> PathBuf {

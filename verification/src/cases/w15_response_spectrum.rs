@@ -12,7 +12,7 @@
 //!       at Δt = 0.01 s and 0.05 s (the recursion is exact at any step)
 //! ```
 //!
-//! Reference: VERIFICATION.md W15 (Chopra, Dynamics of Structures, eqs. 3.1.3 and 4.1.6).
+//! Reference: docs/verification_references.md §W15 (Chopra, Dynamics of Structures, eqs. 3.1.3 and 4.1.6).
 //! Tolerance: 1e-6 of the peak response (the brief's figure; what is left in (a) is the
 //! linear interpolation of the sine between samples, O((ωΔt)²/12) ≈ 1e-8).
 
@@ -21,7 +21,7 @@ use dcfm::Result;
 
 use crate::record::{Check, CheckRow};
 
-const SOURCE: &str = "VERIFICATION.md W15 (Chopra eqs. 3.1.3, 4.1.6)";
+const SOURCE: &str = "docs/verification_references.md §W15 (Chopra eqs. 3.1.3, 4.1.6)";
 const TOL: f64 = 1e-6;
 
 /// max |u − u_exact| / max |u_exact| of the undamped harmonic case, and the relative error

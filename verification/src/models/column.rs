@@ -1,5 +1,5 @@
 //! A column of hex8 elements one element wide, driven at its base — the 1D wave set-up of
-//! VERIFICATION.md W1.
+//! docs/verification_references.md §W1.
 //!
 //! ```text
 //!   top (free or fixed)   z = H
@@ -55,7 +55,7 @@ pub struct ColumnSetup {
 }
 
 impl ColumnSetup {
-    /// VERIFICATION.md W1 defaults: 200 m, default rock, v0 0.1 m/s, T 0.02 s, h = 1 m.
+    /// docs/verification_references.md §W1 defaults: 200 m, default rock, v0 0.1 m/s, T 0.02 s, h = 1 m.
     pub fn w1(wave: Wave, top: TopEnd) -> Self {
         Self {
             height: 200.0,

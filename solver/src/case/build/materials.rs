@@ -9,8 +9,10 @@ use crate::error::{DcfmError, Result};
 use crate::material::{Elastic, Material, PlasticDamage};
 use crate::model::{Model, RegionSetup};
 
-/// Every `[materials.NAME]` table as a validated [`Material`].
-pub(super) fn build_materials(
+/// Every `[materials.NAME]` table as a validated [`Material`]; errors name
+/// `materials.NAME.FIELD` in file `label` (also what the Python module's material-point
+/// driver calls, so its errors read as the case file's).
+pub fn build_materials(
     section: &BTreeMap<String, MaterialSection>,
     label: &str,
 ) -> Result<BTreeMap<String, Material>> {

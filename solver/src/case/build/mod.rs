@@ -14,6 +14,8 @@ mod motions;
 mod output;
 mod time;
 
+pub use materials::build_materials;
+
 use std::path::{Path, PathBuf};
 
 use crate::case::schema::*;

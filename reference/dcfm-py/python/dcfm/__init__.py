@@ -1,0 +1,31 @@
+"""dcfm from Python: load and run cases, drive material points and contact pairs.
+
+The functions and classes come from the compiled extension ``dcfm._dcfm`` (Rust, pyo3);
+their typed signatures are in ``__init__.pyi``. See ``reference/README.md``.
+"""
+
+from ._dcfm import (
+    Case,
+    DcfmError,
+    Mesh,
+    RunResult,
+    Simulation,
+    __version__,
+    box_mesh,
+    contact_pair_step,
+    material_point,
+    to_toml,
+)
+
+__all__ = [
+    "Case",
+    "DcfmError",
+    "Mesh",
+    "RunResult",
+    "Simulation",
+    "__version__",
+    "box_mesh",
+    "contact_pair_step",
+    "material_point",
+    "to_toml",
+]

@@ -8,3 +8,4 @@
 
 pub mod output;
 pub mod run;
+pub mod static_run;

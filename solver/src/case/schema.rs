@@ -35,6 +35,9 @@ pub struct CaseFile {
     /// Contact interfaces (`[[interfaces]]`), see docs/contact.md.
     #[serde(default)]
     pub interfaces: Vec<crate::contact::InterfaceSpec>,
+    /// The static stage (`[static]`), see docs/static_stage.md.
+    #[serde(default, rename = "static")]
+    pub static_stage: Option<crate::case::static_schema::StaticSection>,
 }
 
 /// `[time]`.
@@ -133,6 +136,9 @@ pub struct MeshSection {
     /// Relative node-merge tolerance for blocks.
     #[serde(default)]
     pub merge_tolerance: Option<f64>,
+    /// A plate with a circular hole (O-grid), see docs/static_stage.md.
+    #[serde(default)]
+    pub plate_with_hole: Option<crate::mesh::generators::PlateWithHoleSpec>,
 }
 
 impl MeshSection {

@@ -6,6 +6,7 @@
 //! functions, Jacobian checks) is part of the mesh; the element kernels build on it.
 
 pub mod box_generator;
+pub mod generators;
 pub mod gmsh;
 pub mod hex8_shape;
 mod model_mesh;

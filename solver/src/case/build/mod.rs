@@ -10,6 +10,7 @@ mod loads;
 mod materials;
 mod mesh;
 mod output;
+mod static_stage;
 mod time;
 
 use std::path::{Path, PathBuf};
@@ -31,6 +32,8 @@ pub struct Case {
     pub end: f64,
     pub safety: f64,
     pub output: OutputSection,
+    /// The static stage (`[static]`), run before the dynamic stage.
+    pub static_plan: Option<crate::stage::static_stage::StaticPlan>,
 }
 
 /// Read, parse and build a case file.
@@ -67,6 +70,8 @@ fn build(file: CaseFile, label: &str, dir: &Path) -> Result<Case> {
     loads::build_damping(&mut model, &file.damping, label)?;
     loads::build_initial(&mut model, &file.initial, label)?;
     output::check_output(&model, &file.output, label)?;
+    let static_plan =
+        static_stage::build_static(&model, file.static_stage.as_ref(), &file.output, label)?;
     let dt = model
         .time_step(file.time.dt, file.time.safety)
         .map_err(|e| e.in_file(label))?;
@@ -78,5 +83,6 @@ fn build(file: CaseFile, label: &str, dir: &Path) -> Result<Case> {
         end: file.time.end,
         safety: file.time.safety,
         output: file.output,
+        static_plan,
     })
 }

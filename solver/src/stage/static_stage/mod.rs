@@ -23,6 +23,7 @@
 
 pub mod activation;
 pub mod assembly;
+pub mod checkpoint;
 pub mod cholesky;
 pub mod direct;
 pub mod dofs;

@@ -77,6 +77,7 @@ struct Saved {
 
 /// Relax the step from `u` (updated to the converged state; material states committed
 /// there). The model is handed to the explicit core and back.
+#[allow(clippy::manual_is_multiple_of)] // is_multiple_of needs Rust 1.87; rust-version is 1.85
 pub fn relax(
     mut model: Model,
     u: &mut [[f64; 3]],
@@ -205,7 +206,7 @@ pub fn relax(
                 .map(|(v, m)| 0.5 * m * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]))
                 .sum();
             let converged = last.ratio <= conv.tolerance;
-            if it.is_multiple_of(every) || converged {
+            if it % every == 0 || converged {
                 history.push(HistoryRow {
                     step: input.step_index,
                     substep: k,

@@ -45,13 +45,28 @@ fn w13_stable_step() {
 fn every_case_is_tested_here() {
     let ids: Vec<&str> = cases::all().iter().map(|c| c.id).collect();
     let covered = [
-        "W1", "patch", "energy", "W10", "W13", "W1-conv", "W5", "W6", "W7", "W8", "W9", "bonded",
+        "W1",
+        "patch",
+        "energy",
+        "W10",
+        "W13",
+        "W1-conv",
+        "W5",
+        "W6",
+        "W7",
+        "W8",
+        "W9",
+        "bonded",
         "drop",
+        "W4",
+        "static-geo",
+        "static-DR",
+        "static-seq",
     ];
     for id in ids {
         assert!(
             covered.contains(&id),
-            "case {id} has no test in analytic.rs or convergence.rs"
+            "case {id} has no test in analytic.rs, convergence.rs, contact_cases.rs or static_cases.rs"
         );
     }
 }

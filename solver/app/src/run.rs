@@ -283,6 +283,7 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
         case.static_plan.as_ref(),
         out,
         resume_bytes.as_deref().map(|b| (b, ckpt_label.as_str())),
+        &label,
     )?;
     let static_result = staged.result;
     let mut sim = crate::static_run::start(staged.model, static_result.as_ref(), dt, case.safety)?;

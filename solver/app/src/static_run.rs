@@ -45,12 +45,14 @@ struct StaticSummary<'a> {
 }
 
 /// Run the static stage of `plan` on `model` (or restore it from `checkpoint` = (bytes,
-/// label) when resuming) and write its outputs under `out`.
+/// label) when resuming) and write its outputs under `out`; `case` names the case file in
+/// the errors of a step.
 pub fn run_static_stage(
     mut model: Model,
     plan: Option<&StaticPlan>,
     out: &Path,
     checkpoint: Option<(&[u8], &str)>,
+    case: &str,
 ) -> Result<Staged> {
     let Some(plan) = plan else {
         return Ok(Staged {
@@ -78,7 +80,13 @@ pub fn run_static_stage(
         });
     }
     let t0 = std::time::Instant::now();
-    let (model, result) = static_stage::run(model, plan)?;
+    let (model, result) = static_stage::run(model, plan).map_err(|e| match e {
+        DcfmError::Static { step, message } => DcfmError::Static {
+            step: format!("{case}: {step}"),
+            message,
+        },
+        other => other,
+    })?;
     let wall_s = t0.elapsed().as_secs_f64();
     write_outputs(&model, &result, out, wall_s)?;
     Ok(Staged {

@@ -10,7 +10,11 @@ pub mod contact_drop_bounce;
 pub mod convergence_w01;
 pub mod energy_conservation;
 pub mod patch_test;
+pub mod static_geostatic;
+pub mod static_relaxation;
+pub mod static_sequence;
 pub mod w01_wave_pulses;
+pub mod w04_kirsch;
 pub mod w05_bar_impact;
 pub mod w06_incline;
 pub mod w07_newmark_block;
@@ -79,6 +83,22 @@ pub fn all() -> Vec<Case> {
         Case {
             id: "drop",
             run: contact_drop_bounce::run,
+        },
+        Case {
+            id: "W4",
+            run: w04_kirsch::run,
+        },
+        Case {
+            id: "static-geo",
+            run: static_geostatic::run,
+        },
+        Case {
+            id: "static-DR",
+            run: static_relaxation::run,
+        },
+        Case {
+            id: "static-seq",
+            run: static_sequence::run,
         },
     ]
 }

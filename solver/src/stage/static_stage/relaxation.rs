@@ -5,9 +5,11 @@
 //!
 //! - Out-of-balance at Uⁿ: the step gives M (V^{n+½} − V^{n−½})/Δt + α M V^{n−½} =
 //!   Fⁿ − f_int(Uⁿ) + Rⁿ (contact forces included), so r = M(a + α V^{n−½}) exactly.
-//! - Kinetic damping: at every peak of the kinetic energy all velocities are set to zero.
+//! - Kinetic damping: at every peak of the kinetic energy (½ Σ M |V^{n+½}|² below the
+//!   previous step's) the motion restarts from rest at Uⁿ: V^{n−½} = −½Δt aⁿ, so that the
+//!   full-step velocity is zero there (Barnes 1988's restart at the peak).
 //! - Viscous damping: c = 2ω₀M with ω₀² = xᵀ(f_int(U) − f_int(U₀)) / xᵀMx, x = U − U₀
-//!   (Rayleigh quotient of the displacement so far; Underwood 1983), α Δt ≤ 1.
+//!   (Rayleigh quotient of the displacement so far; Underwood 1983), α Δt ≤ ½.
 //! - Mass scaling (relaxation only): M_i = ½ max_d Σ_e Σ_q |K^e_(i,d) q| with Δt = 1, so
 //!   the Gershgorin bound keeps ω_max ≤ √2 < 2 and all elements advance at the same rate;
 //!   gravity keeps the physical masses (it enters as a nodal load).
@@ -234,10 +236,20 @@ pub fn relax(
                     }
                 }
                 if den > 0.0 && num > 0.0 {
-                    sim.model.damping.alpha = (2.0 * (num / den).sqrt()).min(1.0 / dt);
+                    // α Δt ≤ ½ keeps the damped leapfrog stable for ω²Δt² ≤ 4 − 2αΔt = 3,
+                    // above the ω²Δt² ≤ 2 of the mass scaling.
+                    sim.model.damping.alpha = (2.0 * (num / den).sqrt()).min(0.5 / dt);
                 }
             } else if ke < ke_prev {
-                sim.v.iter_mut().for_each(|v| *v = [0.0; 3]);
+                // Kinetic-energy peak near tⁿ: restart from rest at Uⁿ. At rest means a
+                // zero full-step velocity, ½(V^{n−½} + V^{n+½}) = 0, so V^{n−½} =
+                // −½Δt aⁿ (aⁿ = M⁻¹ rⁿ of this step, contact included). Merely zeroing
+                // V^{n+½} would leave the half kick ½Δt aⁿ in every mode and pump energy
+                // into the highest ones (it went unstable in testing).
+                sim.u.copy_from_slice(&u_prev);
+                for (v, a) in sim.v.iter_mut().zip(&sim.a) {
+                    *v = a.map(|x| -0.5 * dt * x);
+                }
                 sim.restart_energy_account();
                 ke_prev = 0.0;
             } else {

@@ -28,6 +28,8 @@ pub struct Stiffness {
     pub node_row_idx: Vec<usize>,
     /// Equations of each compact node, ascending.
     pub node_eqs: Vec<Vec<u32>>,
+    /// Coordinates of each compact node (for the nested-dissection ordering).
+    pub node_coords: Vec<[f64; 3]>,
 }
 
 impl Stiffness {
@@ -74,10 +76,12 @@ pub fn assemble(model: &Model, dofs: &DofMap) -> Stiffness {
     // equations, numbered by representative node, ascend with it).
     let mut compact = vec![u32::MAX; n_nodes];
     let mut node_eqs: Vec<Vec<u32>> = Vec::new();
+    let mut node_coords = Vec::new();
     for i in 0..n_nodes {
         if dofs.group[i] as usize == i && dofs.eq[i].iter().any(|&e| e != NO_EQ) {
             compact[i] = node_eqs.len() as u32;
             node_eqs.push(dofs.eq[i].iter().copied().filter(|&e| e != NO_EQ).collect());
+            node_coords.push(model.mesh.coords[i]);
         }
     }
     let nn = node_eqs.len();
@@ -170,5 +174,6 @@ pub fn assemble(model: &Model, dofs: &DofMap) -> Stiffness {
         node_col_ptr,
         node_row_idx,
         node_eqs,
+        node_coords,
     }
 }

@@ -118,7 +118,9 @@ pub fn write_static_block(
         put_u64(w, s.active_elements as u64)?;
         put_f64s(w, &s.damaged_volume)?;
         put_u64(w, s.equations as u64)?;
+        put_u64(w, s.stiffness_nonzeros as u64)?;
         put_u64(w, s.factor_nonzeros as u64)?;
+        put_u64(w, u64::from(s.supernodal))?;
         put_f64s(w, &s.seconds)?;
     }
     put_u64(w, result.history.len() as u64)?;
@@ -252,7 +254,9 @@ pub fn read_static_block(
         let active_elements = r.u64()? as usize;
         let d = r.f64s(3)?;
         let equations = r.u64()? as usize;
+        let stiffness_nonzeros = r.u64()? as usize;
         let factor_nonzeros = r.u64()? as usize;
+        let supernodal = r.u64()? == 1;
         let t = r.f64s(3)?;
         steps.push(StepReport {
             name,
@@ -263,7 +267,9 @@ pub fn read_static_block(
             active_elements,
             damaged_volume: [d[0], d[1], d[2]],
             equations,
+            stiffness_nonzeros,
             factor_nonzeros,
+            supernodal,
             seconds: [t[0], t[1], t[2]],
         });
     }

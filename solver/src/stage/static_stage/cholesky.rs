@@ -1,9 +1,11 @@
 //! Sparse Cholesky factorisation K = L Lᵀ of the assembled stiffness (faer), with a
 //! fill-reducing ordering and a check of every pivot.
 //!
-//! - Ordering: approximate minimum degree (faer's AMD) on the graph of the nodes, expanded
-//!   to their DOFs (the DOFs of a node have the same sparsity, so ordering the 9× smaller
-//!   node graph gives the same fill at a fraction of the cost).
+//! - Ordering: approximate minimum degree (faer's AMD) and geometric nested dissection
+//!   (`nested_dissection.rs`), both on the graph of the nodes and expanded to their DOFs
+//!   (the DOFs of a node have the same sparsity, so ordering the 9× smaller node graph
+//!   gives the same fill at a fraction of the cost); the one whose symbolic factor has
+//!   fewer nonzeros is used (nested dissection on 3D meshes, by a factor of 2–4).
 //! - Factorisation: faer chooses the supernodal (dense BLAS-3 blocks) or simplicial form
 //!   from the flop count per nonzero of L; either can be forced (`CholeskyKind`). On 3D
 //!   meshes supernodal wins by far (measured in `docs/static_stage.md`).
@@ -57,6 +59,30 @@ pub struct Factorization {
     pub l_nnz: usize,
     /// Supernodal (true) or simplicial.
     pub supernodal: bool,
+    /// The fill-reducing ordering used.
+    pub ordering: Ordering,
+}
+
+/// Fill-reducing ordering of the equations.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Ordering {
+    /// Approximate minimum degree (faer) on the node graph.
+    MinimumDegree,
+    /// Geometric nested dissection on the node graph.
+    NestedDissection,
+}
+
+/// Expand a node order to the DOF permutation (`fwd[new] = old`, and its inverse).
+fn expand(k: &Stiffness, node_order: &[usize]) -> (Vec<usize>, Vec<usize>) {
+    let mut fwd = Vec::with_capacity(k.n);
+    for &node in node_order {
+        fwd.extend(k.node_eqs[node].iter().map(|&e| e as usize));
+    }
+    let mut inv = vec![0usize; k.n];
+    for (new, &old) in fwd.iter().enumerate() {
+        inv[old] = new;
+    }
+    (fwd, inv)
 }
 
 /// The DOF permutation from AMD on the node graph: `fwd[new] = old`.
@@ -77,40 +103,52 @@ fn node_amd_permutation(k: &Stiffness) -> Result<(Vec<usize>, Vec<usize>), Facto
         MemStack::new(&mut mem),
     )
     .map_err(|e| FactorError::Resource(format!("AMD ordering: {e:?}")))?;
-    let mut fwd = Vec::with_capacity(k.n);
-    for &node in &fwd_n {
-        fwd.extend(k.node_eqs[node].iter().map(|&e| e as usize));
-    }
-    let mut inv = vec![0usize; k.n];
-    for (new, &old) in fwd.iter().enumerate() {
-        inv[old] = new;
-    }
-    Ok((fwd, inv))
+    Ok(expand(k, &fwd_n))
+}
+
+/// Symbolic factorisation of `k` under the permutation (`fwd`, `inv`).
+fn symbolic(
+    k: &Stiffness,
+    fwd: &[usize],
+    inv: &[usize],
+    kind: CholeskyKind,
+) -> Result<SymbolicCholesky<usize>, FactorError> {
+    let perm = faer::perm::PermRef::new_checked(fwd, inv, k.n);
+    let pattern = SymbolicSparseColMatRef::new_checked(k.n, k.n, &k.col_ptr, None, &k.row_idx);
+    let threshold = match kind {
+        CholeskyKind::Auto => SupernodalThreshold::AUTO,
+        CholeskyKind::Simplicial => SupernodalThreshold::FORCE_SIMPLICIAL,
+        CholeskyKind::Supernodal => SupernodalThreshold::FORCE_SUPERNODAL,
+    };
+    let params = CholeskySymbolicParams {
+        supernodal_flop_ratio_threshold: threshold,
+        ..Default::default()
+    };
+    factorize_symbolic_cholesky(
+        pattern,
+        Side::Upper,
+        SymmetricOrdering::Custom(perm),
+        params,
+    )
+    .map_err(|e| FactorError::Resource(format!("symbolic Cholesky: {e:?}")))
 }
 
 impl Factorization {
     /// Order, analyse and factorise `k` (upper triangle).
     pub fn new(k: &Stiffness, kind: CholeskyKind) -> Result<Self, FactorError> {
         let n = k.n;
-        let (fwd, inv) = node_amd_permutation(k)?;
-        let perm = faer::perm::PermRef::new_checked(&fwd, &inv, n);
         let pattern = SymbolicSparseColMatRef::new_checked(n, n, &k.col_ptr, None, &k.row_idx);
-        let threshold = match kind {
-            CholeskyKind::Auto => SupernodalThreshold::AUTO,
-            CholeskyKind::Simplicial => SupernodalThreshold::FORCE_SIMPLICIAL,
-            CholeskyKind::Supernodal => SupernodalThreshold::FORCE_SUPERNODAL,
+        // The ordering that fills less: AMD or nested dissection (both on the node graph).
+        let (fwd_a, inv_a) = node_amd_permutation(k)?;
+        let sym_a = symbolic(k, &fwd_a, &inv_a, kind)?;
+        let nd = super::nested_dissection::order(&k.node_col_ptr, &k.node_row_idx, &k.node_coords);
+        let (fwd_d, inv_d) = expand(k, &nd);
+        let sym_d = symbolic(k, &fwd_d, &inv_d, kind)?;
+        let (symbolic, fwd, ordering) = if sym_d.len_val() < sym_a.len_val() {
+            (sym_d, fwd_d, Ordering::NestedDissection)
+        } else {
+            (sym_a, fwd_a, Ordering::MinimumDegree)
         };
-        let params = CholeskySymbolicParams {
-            supernodal_flop_ratio_threshold: threshold,
-            ..Default::default()
-        };
-        let symbolic = factorize_symbolic_cholesky(
-            pattern,
-            Side::Upper,
-            SymmetricOrdering::Custom(perm),
-            params,
-        )
-        .map_err(|e| FactorError::Resource(format!("symbolic Cholesky: {e:?}")))?;
         let mut values = vec![0.0; symbolic.len_val()];
         let par = Par::Seq;
         let req = symbolic.factorize_numeric_llt_scratch::<f64>(par, Spec::default());
@@ -149,6 +187,7 @@ impl Factorization {
             values,
             n,
             supernodal,
+            ordering,
         };
         // Pivot check: d_j = L_jj² against K_jj of the same (permuted) equation.
         let diag = fact.l_diagonal();
@@ -235,6 +274,7 @@ mod tests {
             node_col_ptr: col_ptr.clone(),
             node_row_idx: row_idx.clone(),
             node_eqs: (0..n as u32).map(|e| vec![e]).collect(),
+            node_coords: (0..n).map(|i| [i as f64, 0.0, 0.0]).collect(),
             col_ptr,
             row_idx,
             values,

@@ -21,9 +21,12 @@ pub struct DirectOutcome {
     /// Out-of-balance before and after.
     pub before: OutOfBalance,
     pub after: OutOfBalance,
-    /// Equations and nonzeros of L.
+    /// Equations, stored nonzeros of K (upper triangle) and of L.
     pub equations: usize,
+    pub k_nnz: usize,
     pub l_nnz: usize,
+    /// faer chose the supernodal factorisation (else simplicial).
+    pub supernodal: bool,
     /// Seconds spent in assembly, factorisation and solve.
     pub seconds: [f64; 3],
 }
@@ -144,7 +147,9 @@ pub fn solve(
         before,
         after,
         equations: dofs.n_eq,
+        k_nnz: k.nnz(),
         l_nnz: fact.l_nnz,
+        supernodal: fact.supernodal,
         seconds: [
             (t1 - t0).as_secs_f64(),
             (t2 - t1).as_secs_f64(),

@@ -31,6 +31,7 @@ pub mod forces;
 pub mod history;
 pub mod in_situ;
 pub mod loads;
+pub mod nested_dissection;
 pub mod plan;
 pub mod relaxation;
 pub mod restraint;
@@ -105,7 +106,9 @@ fn solve_step(
         active_elements: cx.act.n_active(),
         damaged_volume: [0.0; 3],
         equations: 0,
+        stiffness_nonzeros: 0,
         factor_nonzeros: 0,
+        supernodal: false,
         seconds: [0.0; 3],
     };
     match solver {
@@ -144,7 +147,9 @@ fn solve_step(
             report.initial = out.before;
             report.out_of_balance = out.after;
             report.equations = out.equations;
+            report.stiffness_nonzeros = out.k_nnz;
             report.factor_nonzeros = out.l_nnz;
+            report.supernodal = out.supernodal;
             report.seconds = out.seconds;
         }
         StepSolver::Relaxation => {

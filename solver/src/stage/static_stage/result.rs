@@ -33,9 +33,12 @@ pub struct StepReport {
     pub active_elements: usize,
     /// Damaged volume of eq. (27) after the step (m³): [tension, compression, either].
     pub damaged_volume: [f64; 3],
-    /// Direct solve: equations, nonzeros of L and seconds in assembly, factorisation, solve.
+    /// Direct solve: equations, stored nonzeros of K (upper triangle) and of L, whether
+    /// the factorisation was supernodal, and the seconds in assembly, factorisation, solve.
     pub equations: usize,
+    pub stiffness_nonzeros: usize,
     pub factor_nonzeros: usize,
+    pub supernodal: bool,
     pub seconds: [f64; 3],
 }
 

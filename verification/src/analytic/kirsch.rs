@@ -120,9 +120,13 @@ mod tests {
             assert!((k.crown_hoop_stress() - crown).abs() < 1e-6);
             assert!((k.sidewall_displacement() - us).abs() < 1e-12);
             assert!((k.crown_displacement() - uc).abs() < 1e-12);
-            // Far field and the free wall.
+            // The free wall; far away the hoop direction at θ = 0 is vertical (σ = p), at
+            // θ = 90° horizontal (σ = q).
             assert!((k.radial_stress(10.0, 0.3)).abs() < 1e-6);
-            assert!((k.hoop_stress(1e6, 0.0) - 10e6 * k0).abs() < 1.0);
+            assert!((k.hoop_stress(1e6, 0.0) - 10e6).abs() < 1.0);
+            let half_pi = std::f64::consts::FRAC_PI_2;
+            assert!((k.hoop_stress(1e6, half_pi) - 10e6 * k0).abs() < 1.0);
+            assert!((k.radial_stress(1e6, half_pi) - 10e6).abs() < 1.0);
         }
     }
 }

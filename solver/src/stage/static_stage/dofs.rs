@@ -6,6 +6,16 @@
 /// "No equation".
 pub const NO_EQ: u32 = u32::MAX;
 
+/// Root of `i` in a union-find forest `p` (with path halving).
+pub(super) fn find(p: &mut [u32], mut i: u32) -> u32 {
+    while p[i as usize] != i {
+        let up = p[p[i as usize] as usize];
+        p[i as usize] = up;
+        i = up;
+    }
+    i
+}
+
 /// Equation of every node DOF.
 #[derive(Clone, Debug)]
 pub struct DofMap {
@@ -27,14 +37,6 @@ impl DofMap {
     pub fn new(constrained: &[u8], dormant: &[bool], ties: &[(u32, u32)]) -> Self {
         let n = constrained.len();
         let mut parent: Vec<u32> = (0..n as u32).collect();
-        fn find(p: &mut [u32], mut i: u32) -> u32 {
-            while p[i as usize] != i {
-                let up = p[p[i as usize] as usize];
-                p[i as usize] = up;
-                i = up;
-            }
-            i
-        }
         for &(a, b) in ties {
             let (ra, rb) = (find(&mut parent, a), find(&mut parent, b));
             if ra != rb {

@@ -5,6 +5,7 @@
 
 use nalgebra::{Matrix6, SymmetricEigen};
 
+use super::dofs::find;
 use crate::error::{DcfmError, Result};
 use crate::model::Model;
 
@@ -14,14 +15,6 @@ use crate::model::Model;
 pub fn check_restrained(model: &Model, constrained: &[u8], ties: &[(u32, u32)]) -> Result<()> {
     let n = model.mesh.n_nodes();
     let mut parent: Vec<u32> = (0..n as u32).collect();
-    fn find(p: &mut [u32], mut i: u32) -> u32 {
-        while p[i as usize] != i {
-            let up = p[p[i as usize] as usize];
-            p[i as usize] = up;
-            i = up;
-        }
-        i
-    }
     let union = |p: &mut Vec<u32>, a: u32, b: u32| {
         let (ra, rb) = (find(p, a), find(p, b));
         if ra != rb {

@@ -4,8 +4,9 @@
 //! - [`runner`]: the whole-run throughput runner behind the `throughput` binary;
 //! - [`record`]: one JSON record per timed configuration;
 //! - [`history`]: the append-only `benchmarks/history.jsonl` of those records;
+//! - [`static_solve`]: the static stage's sparse direct solve of an n³ cube (issue #7);
 //! - [`speedup`] and [`targets`]: what the runner prints at the end (thread speed-ups and
-//!   the throughput targets of issue #2);
+//!   the throughput targets of issues #2, #3, #4 and #7);
 //! - [`git`], [`timestamp`]: provenance of a record (commit, UTC time);
 //! - [`cputime`]: CPU time of the process, to flag runs starved by other processes;
 //! - [`error`]: the runner's error type.
@@ -18,6 +19,7 @@ pub mod history;
 pub mod record;
 pub mod runner;
 pub mod speedup;
+pub mod static_solve;
 pub mod targets;
 pub mod timestamp;
 

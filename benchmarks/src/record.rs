@@ -68,6 +68,10 @@ pub struct ThroughputRecord {
     /// `release`, or `debug` when built with debug assertions (numbers not comparable).
     #[serde(default)]
     pub profile: String,
+    /// Static direct-solve cases (`static_cholesky_cube*`): the phases, sizes and memory of
+    /// the solve; `steps` is 1 and `wall_s` the whole static stage.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub static_solve: Option<crate::static_solve::StaticSolveTiming>,
 }
 
 impl ThroughputRecord {

@@ -25,6 +25,9 @@ pub struct RunConfig {
     /// Interface slabs (n² × 4 elements, (n+1)² DCFM pairs) whose contact phase is reported
     /// as a share of the step (issue #3); run after the cubes.
     pub interface_sizes: Vec<usize>,
+    /// Static direct solves of n³ cubes (issue #7), run after the explicit cases on the
+    /// largest thread count (the factorisation is sequential).
+    pub static_sizes: Vec<usize>,
     /// Thread counts; each case is timed on each, in this order, on the same simulation.
     pub threads: Vec<usize>,
     /// Warm-up steps before each timing; `None`: n + 5, enough for the waves from the base
@@ -56,6 +59,7 @@ impl RunConfig {
                 CubeMaterial::PlasticDamageElastic,
                 CubeMaterial::PlasticDamageDamaging,
             ],
+            static_sizes: vec![40],
             threads: vec![1, 2],
             warmup_steps: None,
             min_wall_s: 2.0,
@@ -72,12 +76,26 @@ impl RunConfig {
         Self {
             sizes: vec![4, 8],
             interface_sizes: vec![8],
+            static_sizes: vec![8],
             min_wall_s: 0.1,
             min_steps: 5,
             max_steps: 200,
             mode: "quick".to_string(),
             ..Self::standard()
         }
+    }
+
+    /// The static cases to run (names `static_cholesky_cube{n}`), filter applied.
+    pub fn static_cases(&self) -> Vec<usize> {
+        self.static_sizes
+            .iter()
+            .copied()
+            .filter(|&n| {
+                self.filter
+                    .as_deref()
+                    .is_none_or(|f| crate::static_solve::case_name(n).contains(f))
+            })
+            .collect()
     }
 
     /// The cases to run, filter applied, in run order.
@@ -113,7 +131,7 @@ impl RunConfig {
     }
 
     fn validate(&self) -> Result<(), BenchError> {
-        if self.sizes.contains(&0) {
+        if self.sizes.contains(&0) || self.static_sizes.contains(&0) {
             return Err(BenchError::Config("cube sizes must be >= 1".into()));
         }
         if self.threads.is_empty() || self.threads.contains(&0) {
@@ -179,7 +197,7 @@ pub fn run(
 ) -> Result<Vec<ThroughputRecord>, BenchError> {
     config.validate()?;
     let cases = config.cases();
-    if cases.is_empty() {
+    if cases.is_empty() && config.static_cases().is_empty() {
         return Err(BenchError::Config(format!(
             "no case matches the filter {:?}",
             config.filter.as_deref().unwrap_or("")
@@ -236,6 +254,7 @@ pub fn run(
                 mode: config.mode.clone(),
                 contact_share,
                 profile: profile.to_string(),
+                static_solve: None,
             };
             if let Some(path) = &config.history {
                 history::append(path, &record)?;
@@ -243,6 +262,43 @@ pub fn run(
             on_record(&record);
             records.push(record);
         }
+    }
+    let threads = config.threads.iter().copied().max().unwrap_or(1);
+    for n in config.static_cases() {
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(threads)
+            .build()?;
+        let cpu0 = cputime::process_cpu_seconds();
+        let (timing, wall_s, nodes) = pool.install(|| crate::static_solve::time_static_solve(n))?;
+        let cpu_s = cputime::process_cpu_seconds().zip(cpu0).map(|(b, a)| b - a);
+        let elements = n * n * n;
+        let record = ThroughputRecord {
+            case: crate::static_solve::case_name(n),
+            elements,
+            nodes,
+            integration: Integration::Full.name().to_string(),
+            threads,
+            steps: 1,
+            wall_s,
+            steps_per_s: 1.0 / wall_s.max(1e-9),
+            element_updates_per_s: elements as f64 / wall_s.max(1e-9),
+            bytes_per_element: (timing.stiffness_bytes + timing.factor_bytes) as f64
+                / elements as f64,
+            dt_s: 0.0,
+            commit: commit.clone(),
+            timestamp: timestamp::utc_now(),
+            cpus,
+            cpu_share: cpu_s.map(|c| c / (wall_s.max(1e-9) * threads as f64)),
+            mode: config.mode.clone(),
+            contact_share: None,
+            profile: profile.to_string(),
+            static_solve: Some(timing),
+        };
+        if let Some(path) = &config.history {
+            history::append(path, &record)?;
+        }
+        on_record(&record);
+        records.push(record);
     }
     Ok(records)
 }

@@ -87,6 +87,7 @@ mod tests {
             contact_share: None,
             mode: "quick".into(),
             profile: "release".into(),
+            static_solve: None,
         }
     }
 

@@ -26,6 +26,7 @@ fn tiny(history: Option<PathBuf>) -> RunConfig {
         history,
         plastic_damage: Vec::new(),
         interface_sizes: Vec::new(),
+        static_sizes: Vec::new(),
         ..RunConfig::quick()
     }
 }
@@ -186,4 +187,32 @@ fn interface_slab_reports_the_contact_share() {
     assert!(targets::check(&records)
         .iter()
         .any(|c| c.target.contains("contact phase")));
+}
+
+#[test]
+fn static_row_reports_the_three_phases_and_the_sizes() {
+    let config = RunConfig {
+        integrations: Vec::new(),
+        static_sizes: vec![4],
+        ..tiny(None)
+    };
+    let records = run(&config, |_| {}).expect("static run");
+    let r = records
+        .iter()
+        .find(|r| r.case == "static_cholesky_cube4")
+        .expect("static row");
+    assert_eq!(records.len(), 1, "one thread count for the static row");
+    let s = r.static_solve.as_ref().expect("static timing");
+    // 5³ nodes, the base's 25 fixed: 100 free nodes, 300 equations.
+    assert_eq!(s.equations, 300);
+    assert!(s.factor_nonzeros >= s.stiffness_nonzeros);
+    assert!(s.assembly_s >= 0.0 && s.factorization_s >= 0.0 && s.solve_s >= 0.0);
+    assert!(s.assembly_s + s.factorization_s + s.solve_s <= r.wall_s);
+    let line = r.to_json_line();
+    for key in REQUIRED_KEYS {
+        assert!(
+            line.contains(&format!("\"{key}\"")),
+            "{key} missing in {line}"
+        );
+    }
 }

@@ -59,6 +59,10 @@ pub enum DcfmError {
     /// A material parameter set that the model cannot accept.
     #[error("material '{material}': {message}")]
     Material { material: String, message: String },
+    /// A step of the static stage failed (did not converge, singular stiffness, an
+    /// excavation or activation that the state does not allow); names the step and where.
+    #[error("static stage, {step}: {message}")]
+    Static { step: String, message: String },
 }
 
 /// Result alias used across the crate.

@@ -50,14 +50,38 @@ fn w13_stable_step() {
 fn every_case_is_tested_here() {
     let ids: Vec<&str> = cases::all().iter().map(|c| c.info.id).collect();
     let covered = [
-        "W1", "patch", "energy", "W10", "W11", "W13", "W1-conv", "W5", "W6", "W7", "W8", "W9",
-        "bonded", "drop", "W15a", "W15b", "W15c", "W15d", "W15e", "W15f", // boundaries.rs:
-        "W2", "W3", "W14",
+        "W1",
+        "patch",
+        "energy",
+        "W10",
+        "W11",
+        "W13",
+        "W1-conv",
+        "W5",
+        "W6",
+        "W7",
+        "W8",
+        "W9",
+        "bonded",
+        "drop",
+        "W15a",
+        "W15b",
+        "W15c",
+        "W15d",
+        "W15e",
+        "W15f", // boundaries.rs:
+        "W2",
+        "W3",
+        "W14", // static_cases.rs:
+        "W4",
+        "static-geo",
+        "static-DR",
+        "static-seq",
     ];
     for id in ids {
         assert!(
             covered.contains(&id),
-            "case {id} has no test in analytic.rs, contact_cases.rs, convergence.rs or boundaries.rs"
+            "case {id} has no test in analytic.rs, convergence.rs, contact_cases.rs, boundaries.rs, motion.rs or static_cases.rs"
         );
     }
 }

@@ -1,5 +1,5 @@
 //! Boundary verification cases: absorbing boundaries, seismic input and the free field
-//! reproduce their references (VERIFICATION.md W2, W3, W14) within the stated tolerances.
+//! reproduce their references (docs/verification_references.md §W2, W3, W14) within the stated tolerances.
 
 use dcfm_verification::cases;
 use dcfm_verification::record::failures;

@@ -1,4 +1,4 @@
-//! Ground-motion verification (VERIFICATION.md W15): response spectrum, Arias intensity,
+//! Ground-motion verification (docs/verification_references.md §W15): response spectrum, Arias intensity,
 //! Butterworth filters, integration, real records, synthetic generator.
 //! Requirement: the motion module reproduces closed forms and file headers within the
 //! stated tolerances, and the synthetic default is reproducible bit for bit.

@@ -2,6 +2,7 @@
 //!
 //! ```text
 //! cargo run --release -p dcfm-benchmarks --bin throughput [-- --quick --no-record --filter cube40]
+//! cargo run --release -p dcfm-benchmarks --bin throughput -- --filter static --static-sizes 40
 //! ```
 //!
 //! Stdout: one JSON record per timed configuration (JSON Lines, pipe it to `jq`).
@@ -33,6 +34,9 @@ struct Cli {
     /// Cube divisions n, n³ elements (default 20,40; 4,8 with --quick).
     #[arg(long, value_delimiter = ',')]
     sizes: Option<Vec<usize>>,
+    /// Static direct solves of n³ cubes (default 40; 8 with --quick; empty: none).
+    #[arg(long, value_delimiter = ',')]
+    static_sizes: Option<Vec<usize>>,
     /// Minimum timed wall time per configuration, seconds (default 2; 0.1 with --quick).
     #[arg(long)]
     min_wall: Option<f64>,
@@ -55,6 +59,9 @@ fn main() -> ExitCode {
     if let Some(s) = cli.sizes {
         config.sizes = s;
     }
+    if let Some(s) = cli.static_sizes {
+        config.static_sizes = s;
+    }
     if let Some(w) = cli.min_wall {
         config.min_wall_s = w;
     }
@@ -70,6 +77,23 @@ fn main() -> ExitCode {
     let records = match run(&config, |r| {
         println!("{}", r.to_json_line());
         let _ = std::io::stdout().flush();
+        if let Some(s) = &r.static_solve {
+            eprintln!(
+                "{:<22} {} equations: assembly {:.2} s, factorisation {:.2} s ({}, L {:.3e} nonzeros, {:.2} GB), solve {:.3} s; static stage {:.2} s; peak memory {}",
+                r.case,
+                s.equations,
+                s.assembly_s,
+                s.factorization_s,
+                if s.supernodal { "supernodal" } else { "simplicial" },
+                s.factor_nonzeros as f64,
+                s.factor_bytes as f64 / 1e9,
+                s.solve_s,
+                r.wall_s,
+                s.peak_rss_bytes
+                    .map_or("n/a".to_string(), |b| format!("{:.2} GB", b as f64 / 1e9))
+            );
+            return;
+        }
         eprintln!(
             "{:<18} {} thread(s): {:>6} steps in {:6.2} s, {:9.3e} element-updates/s{}",
             r.case,
@@ -109,7 +133,7 @@ fn main() -> ExitCode {
     }
     let checks = targets::check(&records);
     if !checks.is_empty() {
-        eprintln!("\ntargets (issue #2):");
+        eprintln!("\ntargets (issues #2, #3, #4, #7):");
         for c in &checks {
             eprintln!(
                 "  [{}] {} (measured {:.3e}){}",

@@ -47,6 +47,7 @@ pub fn to_py(err: dcfm::DcfmError) -> PyErr {
         E::Unstable { .. } => ("unstable", None, None, None, None),
         E::Contact { .. } => ("contact", None, None, None, None),
         E::Material { .. } => ("material", None, None, None, None),
+        E::Static { .. } => ("static", None, None, None, None),
     };
     Python::attach(|py| {
         let e = DcfmError::new_err(message);

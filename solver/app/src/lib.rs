@@ -10,3 +10,4 @@ pub mod mesh_cmd;
 pub mod motion_cmd;
 pub mod output;
 pub mod run;
+pub mod static_run;

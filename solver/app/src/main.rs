@@ -143,6 +143,11 @@ fn main() -> ExitCode {
                     (c.end / c.dt).ceil()
                 );
                 say!("memory    {:.0} bytes per element", m.bytes_per_element());
+                if let Some(plan) = &c.static_plan {
+                    for line in plan.describe() {
+                        say!("{line}");
+                    }
+                }
                 ExitCode::SUCCESS
             }
             Err(e) => {

@@ -269,14 +269,37 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
     let dt = case.dt;
     let output = case.output.clone();
     let total_steps = (end / dt).ceil() as u64;
-    let mut sim = Simulation::new(case.model, dt, case.safety)?;
-    let header = history_header(&output, &sim);
     let checkpoint = out.join("checkpoint.bin");
+    let ckpt_label = checkpoint.display().to_string();
+    let resume_bytes = if opts.resume && checkpoint.exists() {
+        Some(std::fs::read(&checkpoint).map_err(|e| DcfmError::io(&ckpt_label, e))?)
+    } else {
+        None
+    };
+    // ---- static stage (owner: static; docs/static_stage.md) ---------------------------
+    // Run it (writing static.vtu, static_histories.csv, static_summary.json) or restore it
+    // from the checkpoint; the dynamic stage starts from its state. Every checkpoint begins
+    // with its block (`static_run::write_static`).
+    let staged = crate::static_run::run_static_stage(
+        case.model,
+        case.static_plan.as_ref(),
+        out,
+        resume_bytes.as_deref().map(|b| (b, ckpt_label.as_str())),
+        &label,
+    )?;
+    let static_result = staged.result;
+    let mut sim = crate::static_run::start(staged.model, static_result.as_ref(), dt, case.safety)?;
+    if staged.fresh {
+        write_atomic_with(&checkpoint, |w| {
+            crate::static_run::write_static(w, static_result.as_ref(), &sim.model)?;
+            write_checkpoint(w, &sim)
+        })?;
+    }
+    // ---- end of the static stage hook ---------------------------------------------------
+    let header = history_header(&output, &sim);
     let mut resumed_from = None;
-    if opts.resume && checkpoint.exists() {
-        let label = checkpoint.display().to_string();
-        let bytes = std::fs::read(&checkpoint).map_err(|e| DcfmError::io(&label, e))?;
-        read_checkpoint(&bytes, &label, &mut sim)?;
+    if let Some(bytes) = &resume_bytes {
+        read_checkpoint(&bytes[staged.dynamic_offset..], &ckpt_label, &mut sim)?;
         resumed_from = Some(sim.step);
     }
     let pvd_path = out.join("case.pvd");
@@ -344,7 +367,10 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
         }
         if output.checkpoint_every > 0 && sim.step % output.checkpoint_every == 0 {
             hist.flush()?;
-            write_atomic_with(&checkpoint, |w| write_checkpoint(w, &sim))?;
+            write_atomic_with(&checkpoint, |w| {
+                crate::static_run::write_static(w, static_result.as_ref(), &sim.model)?;
+                write_checkpoint(w, &sim)
+            })?;
         }
         if sim.step % 64 == 0 {
             let el = t0.elapsed().as_secs_f64().max(1e-9);

@@ -6,6 +6,8 @@
 
 mod build;
 mod schema;
+mod static_schema;
 
 pub use build::{build_materials, load_case, parse_case, Case};
 pub use schema::*;
+pub use static_schema::*;

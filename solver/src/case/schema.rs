@@ -44,6 +44,9 @@ pub struct CaseFile {
     /// Ground motions (`[motions.NAME]`), see docs/motion.md.
     #[serde(default)]
     pub motions: BTreeMap<String, crate::motion::MotionSpec>,
+    /// The static stage (`[static]`), see docs/static_stage.md.
+    #[serde(default, rename = "static")]
+    pub static_stage: Option<crate::case::static_schema::StaticSection>,
 }
 
 /// `[time]`.
@@ -142,6 +145,9 @@ pub struct MeshSection {
     /// Relative node-merge tolerance for blocks.
     #[serde(default)]
     pub merge_tolerance: Option<f64>,
+    /// A plate with a circular hole (O-grid), see docs/static_stage.md.
+    #[serde(default)]
+    pub plate_with_hole: Option<crate::mesh::generators::PlateWithHoleSpec>,
 }
 
 impl MeshSection {

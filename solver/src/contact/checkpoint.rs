@@ -6,7 +6,7 @@ use super::pair::PairState;
 use super::ContactSystem;
 
 /// Values stored per node of surface a.
-const PER_NODE: usize = 16;
+const PER_NODE: usize = 20;
 
 impl ContactSystem {
     /// Every interface node's state, plus the friction work, as numbers.
@@ -30,6 +30,10 @@ impl ContactSystem {
                     s.face as f64,
                     s.xi[0],
                     s.xi[1],
+                    if s.active { 1.0 } else { 0.0 },
+                    s.rel0[0],
+                    s.rel0[1],
+                    s.rel0[2],
                     0.0,
                 ]);
             }
@@ -69,6 +73,8 @@ impl ContactSystem {
                 s.tangential = [v[9], v[10], v[11]];
                 s.face = v[12] as u32;
                 s.xi = [v[13], v[14]];
+                s.active = v[15] != 0.0;
+                s.rel0 = [v[16], v[17], v[18]];
             }
         }
         Ok(())

@@ -28,6 +28,7 @@
 //! See `docs/contact.md` for the equations, the sign conventions and the choices made
 //! where the paper is terse.
 
+mod activity;
 mod checkpoint;
 /// The bilinear face geometry and vector helpers (they belong to the mesh; contact uses them).
 pub use crate::mesh::face_geometry as geom;
@@ -190,6 +191,13 @@ pub(crate) struct SlaveNode {
     pub gap_start: f64,
     /// Lost its cohesion in the current step.
     pub broke: bool,
+    /// Takes part in contact: false while the node or its partner is dormant (its elements
+    /// not yet placed, or excavated) in the static stage.
+    pub active: bool,
+    /// Reference relative displacement δ₀ = U_b − U_a at the pair's activation (0 unless it
+    /// came alive in a deformed configuration): gaps and slips are measured from it, so a
+    /// bond placed against rock that has already moved is at rest (`activity.rs`).
+    pub rel0: [f64; 3],
 }
 
 /// Parameters and geometry of one interface.
@@ -203,6 +211,8 @@ pub(crate) struct Interface {
     pub slaves: Vec<SlaveNode>,
     /// Faces of surface b (node numbers, counter-clockwise from outside b).
     pub b_faces: Vec<[u32; 4]>,
+    /// Face of surface b takes part in contact (none of its nodes dormant).
+    pub b_face_active: Vec<bool>,
     /// Largest diagonal of the faces of surface b (reference configuration).
     pub b_face_size: f64,
     /// Records at the start of the step and forces of the previous sweep (interfaces with
@@ -380,8 +390,11 @@ impl ContactSystem {
             s.slid = false;
             s.broke = false;
         }
-        let any_surface = iface.slaves.iter().any(|s| s.surface);
-        let any_pair = iface.slaves.iter().any(|s| !s.surface && s.partner != NONE);
+        let any_surface = iface.slaves.iter().any(|s| s.surface && s.active);
+        let any_pair = iface
+            .slaves
+            .iter()
+            .any(|s| !s.surface && s.partner != NONE && s.active);
         if !(any_surface && any_pair) {
             self.point_to_point(iface, inp, r);
             if any_surface {
@@ -440,7 +453,7 @@ impl ContactSystem {
             tensile_capacity: 0.0,
         };
         for s in iface.slaves.iter_mut() {
-            if s.surface || s.partner == NONE {
+            if s.surface || s.partner == NONE || !s.active {
                 continue;
             }
             let (a, b) = (s.node as usize, s.partner as usize);
@@ -448,8 +461,8 @@ impl ContactSystem {
             let w_sum = wa + wb;
             let ua = axpy(inp.u_pred[a], dt2 * wa, r[a]);
             let ub = axpy(inp.u_pred[b], dt2 * wb, r[b]);
-            let rel_pred = sub(ub, ua);
-            let rel_old = sub(inp.u_old[b], inp.u_old[a]);
+            let rel_pred = sub(sub(ub, ua), s.rel0);
+            let rel_old = sub(sub(inp.u_old[b], inp.u_old[a]), s.rel0);
             if w_sum <= 0.0 {
                 // Both sides fixed: nothing can move, no force is needed.
                 s.gap = dot(rel_pred, s.normal);
@@ -521,7 +534,7 @@ impl ContactSystem {
         let mut nf = vec![0.0; n_nodes];
         let mut tf = vec![0.0; 3 * n_nodes];
         for iface in &self.interfaces {
-            for s in &iface.slaves {
+            for s in iface.slaves.iter().filter(|s| s.active) {
                 let code = s.state.code() as f64 + if s.surface { 10.0 } else { 0.0 };
                 let mut put = |k: usize, sign: f64| {
                     if k >= n_nodes {
@@ -560,7 +573,7 @@ impl ContactSystem {
             .iter()
             .map(|iface| {
                 let mut a = [0.0; 4];
-                for s in &iface.slaves {
+                for s in iface.slaves.iter().filter(|s| s.active) {
                     let k = match (s.surface, s.state) {
                         (_, PairState::Separated) => 2,
                         (true, _) => 3,

@@ -304,6 +304,8 @@ pub(super) fn build_interface(
             slid: false,
             broke: false,
             gap_start: 0.0,
+            active: true,
+            rel0: [0.0; 3],
         });
     }
     match spec.mode {
@@ -325,6 +327,7 @@ pub(super) fn build_interface(
             spec.tensile_strength.unwrap_or(spec.cohesion)
         },
         slaves,
+        b_face_active: vec![true; gb.faces.len()],
         b_faces: gb.faces,
         b_face_size: gb.max_diag,
         snapshot: Vec::new(),

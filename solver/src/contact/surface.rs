@@ -589,6 +589,9 @@ pub(super) fn solve(
         list.clear();
     }
     for (fi, f) in iface.b_faces.iter().enumerate() {
+        if !iface.b_face_active[fi] {
+            continue;
+        }
         let x = f.map(cur);
         let lo = [0, 1, 2].map(|d| x.iter().map(|q| q[d]).fold(f64::INFINITY, f64::min) - capture);
         let hi =
@@ -604,10 +607,12 @@ pub(super) fn solve(
     }
     // Closest facing face for each node in point-to-surface contact.
     for (si, sl) in iface.slaves.iter_mut().enumerate() {
-        if !sl.surface {
+        if !sl.surface || !sl.active {
             continue;
         }
-        let p = cur(sl.node);
+        // The node's position with its activation offset δ₀ (zero unless it was placed
+        // against a surface that had already moved).
+        let p = add(cur(sl.node), sl.rel0);
         let mut best: Option<(f64, u32, f64, f64)> = None;
         if let Some(list) = s.grid.get(&cell(p, hcell)) {
             for &fi in list {
@@ -647,7 +652,7 @@ pub(super) fn solve(
         };
         let xbar = face.map(pred);
         let cbar = (0..4).fold([0.0; 3], |acc, j| axpy(acc, phi[j], xbar[j]));
-        let dbar = sub(cbar, pred(sl.node));
+        let dbar = sub(cbar, add(pred(sl.node), sl.rel0));
         sl.face = fi;
         sl.xi = [xi, eta];
         sl.gap_start = dot(dn, n);
@@ -708,7 +713,7 @@ pub(super) fn solve(
             )
         };
         let c = (0..4).fold([0.0; 3], |acc, j| axpy(acc, a.phi[j], corr(a.face[j])));
-        let d = sub(c, corr(a.node));
+        let d = sub(c, add(corr(a.node), sl.rel0));
         let dslip = tangential(sub(d, a.dn), a.n);
         sl.gap = dot(d, a.n);
         sl.slip = add(sl.slip, dslip);

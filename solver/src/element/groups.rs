@@ -53,6 +53,14 @@ pub struct ElementGroup {
     colour_blocks: Vec<std::ops::Range<usize>>,
     /// Integration-point state (`integration.points()` points per element).
     pub states: PointStates,
+    /// Initial strain ε₀ of every integration point (in-situ stress σ₀ = E₀ : ε₀), added to
+    /// the strain of the displacements before the material update; `None` (no cost) for
+    /// groups without initial stress (`docs/static_stage.md`).
+    pub initial_strain: Option<Vec<Voigt>>,
+    /// Reference (stress-free) displacements of every element's nodes: the kernels see
+    /// u − u_ref, so that an element activated in a deformed configuration starts
+    /// stress-free there (the static stage's activation); `None` for groups without one.
+    pub reference: Option<Vec<[[f64; 3]; 8]>>,
 }
 
 /// Raw pointer made shareable across threads; every use writes disjoint indices
@@ -105,21 +113,7 @@ impl ElementGroup {
             *range = start..start + len;
             start += len;
         }
-        let mut blocks = Vec::new();
-        let mut colour_blocks = Vec::with_capacity(n_colours);
-        for range in &colour_ranges {
-            let first = blocks.len();
-            let mut start = range.start;
-            for le in range.clone() {
-                if le + 1 == range.end
-                    || elements[le + 1] as usize / BLOCK != elements[start] as usize / BLOCK
-                {
-                    blocks.push(start..le + 1);
-                    start = le + 1;
-                }
-            }
-            colour_blocks.push(first..blocks.len());
-        }
+        let (blocks, colour_blocks) = colouring_blocks(&elements, &colour_ranges);
         let conn: Vec<[u32; 8]> = elements
             .iter()
             .map(|&e| mesh.elements[e as usize])
@@ -172,6 +166,8 @@ impl ElementGroup {
             blocks,
             colour_blocks,
             states,
+            initial_strain: None,
+            reference: None,
         })
     }
 
@@ -195,7 +191,9 @@ impl ElementGroup {
             GroupGeometry::Full(_) => std::mem::size_of::<FullGeometry>(),
         };
         let fixed = geo + std::mem::size_of::<[u32; 8]>() + 4 + 2 * 8;
-        fixed as f64 + self.states.bytes() as f64 / self.len() as f64
+        let extra = self.initial_strain.as_ref().map_or(0, |v| v.len() * 48)
+            + self.reference.as_ref().map_or(0, |v| v.len() * 192);
+        fixed as f64 + (self.states.bytes() + extra) as f64 / self.len() as f64
     }
 
     /// Add the internal forces of the elements of colour `c` into `f_int` (and the
@@ -229,11 +227,16 @@ impl ElementGroup {
         let conn = &self.conn;
         let lengths = &self.char_length;
         let geometry = &self.geometry;
+        let initial = self.initial_strain.as_deref();
+        let reference = self.reference.as_deref();
         let beta = settings.beta;
         let dt = settings.dt;
         let element = |le: usize| {
             let nodes = &conn[le];
-            let ue: [[f64; 3]; 8] = std::array::from_fn(|a| u[nodes[a] as usize]);
+            let mut ue: [[f64; 3]; 8] = std::array::from_fn(|a| u[nodes[a] as usize]);
+            if let Some(r) = reference {
+                subtract_reference(&mut ue, &r[le]);
+            }
             let ve: [[f64; 3]; 8] = if beta > 0.0 {
                 std::array::from_fn(|a| v[nodes[a] as usize])
             } else {
@@ -250,15 +253,41 @@ impl ElementGroup {
             let mut fd = [[0.0; 3]; 8];
             match geometry {
                 GroupGeometry::Uniform(g) => {
-                    hex8_uniform::internal_force(
-                        &g[le], material, &ue, old_s, new_s, &ctx, &mut fe,
-                    );
+                    match initial {
+                        None => hex8_uniform::internal_force(
+                            &g[le], material, &ue, old_s, new_s, &ctx, &mut fe,
+                        ),
+                        Some(e0) => hex8_uniform::internal_force_with_initial_strain(
+                            &g[le],
+                            material,
+                            &ue,
+                            Some(&e0[le]),
+                            old_s,
+                            new_s,
+                            &ctx,
+                            &mut fe,
+                        ),
+                    };
                     if beta > 0.0 {
                         damping_force_uniform(&g[le], material, &ve, beta, &mut fd);
                     }
                 }
                 GroupGeometry::Full(g) => {
-                    hex8_full::internal_force(&g[le], material, &ue, old_s, new_s, &ctx, &mut fe);
+                    match initial {
+                        None => hex8_full::internal_force(
+                            &g[le], material, &ue, old_s, new_s, &ctx, &mut fe,
+                        ),
+                        Some(e0) => hex8_full::internal_force_with_initial_strain(
+                            &g[le],
+                            material,
+                            &ue,
+                            Some(&e0[8 * le..8 * le + 8]),
+                            old_s,
+                            new_s,
+                            &ctx,
+                            &mut fe,
+                        ),
+                    };
                     if beta > 0.0 {
                         damping_force_full(&g[le], material, &ve, beta, &mut fd);
                     }
@@ -290,16 +319,19 @@ impl ElementGroup {
 
     /// Volume-averaged strain and stress of the group's element `le` from displacements
     /// `u` and the committed state (changes nothing).
+    ///
+    /// The strain is that of the displacements (relative to the element's reference, if
+    /// any); the stress includes the initial strain ε₀ of the points (in-situ stress).
     pub fn strain_stress_of(&self, le: usize, u: &[[f64; 3]]) -> (Voigt, Voigt) {
         let stride = self.states.stride();
         let state = self.states.current();
-        let nodes = &self.conn[le];
-        let ue: [[f64; 3]; 8] = std::array::from_fn(|a| u[nodes[a] as usize]);
+        let ue = self.element_displacements(le, u);
         match &self.geometry {
             GroupGeometry::Uniform(g) => {
                 let eps = g[le].strain(&ue);
                 let s = &state[le * stride..(le + 1) * stride];
-                (eps, self.material.stress_from_state(&eps, s))
+                let total = self.with_initial_strain(le, 0, &eps);
+                (eps, self.material.stress_from_state(&total, s))
             }
             GroupGeometry::Full(g) => {
                 let mut em = [0.0; 6];
@@ -308,9 +340,10 @@ impl ElementGroup {
                 for gp in 0..8 {
                     let eps = g[le].strain(gp, &ue);
                     let p = le * 8 + gp;
+                    let total = self.with_initial_strain(le, gp, &eps);
                     let s = self
                         .material
-                        .stress_from_state(&eps, &state[p * stride..(p + 1) * stride]);
+                        .stress_from_state(&total, &state[p * stride..(p + 1) * stride]);
                     let w = g[le].wdet[gp] / vol;
                     for i in 0..6 {
                         em[i] += w * eps[i];
@@ -430,12 +463,11 @@ impl ElementGroup {
             .into_par_iter()
             .with_min_len(1024)
             .map(|le| {
-                let nodes = &self.conn[le];
-                let ue: [[f64; 3]; 8] = std::array::from_fn(|a| u[nodes[a] as usize]);
+                let ue = self.element_displacements(le, u);
                 match &self.geometry {
                     GroupGeometry::Uniform(g) => {
                         let g = &g[le];
-                        let e = g.strain(&ue);
+                        let e = self.with_initial_strain(le, 0, &g.strain(&ue));
                         let s = el.stress(&e);
                         let q = g.hourglass_modes(&ue);
                         let hq: f64 = q.iter().flatten().map(|x| x * x).sum();
@@ -443,7 +475,7 @@ impl ElementGroup {
                     }
                     GroupGeometry::Full(g) => (0..8)
                         .map(|gp| {
-                            let e = g[le].strain(gp, &ue);
+                            let e = self.with_initial_strain(le, gp, &g[le].strain(gp, &ue));
                             0.5 * g[le].wdet[gp] * dot6(&el.stress(&e), &e)
                         })
                         .sum(),
@@ -452,6 +484,247 @@ impl ElementGroup {
             .collect();
         parts.iter().sum()
     }
+}
+
+/// The static stage's editing of groups: subsets of the elements (excavation,
+/// activation), carrying the point data of surviving elements over, initial strains,
+/// reference displacements and element stiffness matrices. None of it runs in the step loop.
+impl ElementGroup {
+    /// Displacements of element `le`'s nodes, relative to its reference if it has one.
+    #[inline]
+    pub fn element_displacements(&self, le: usize, u: &[[f64; 3]]) -> [[f64; 3]; 8] {
+        let nodes = &self.conn[le];
+        let mut ue: [[f64; 3]; 8] = std::array::from_fn(|a| u[nodes[a] as usize]);
+        if let Some(r) = &self.reference {
+            subtract_reference(&mut ue, &r[le]);
+        }
+        ue
+    }
+
+    /// `eps` plus the initial strain of point `gp` of element `le` (if any).
+    #[inline]
+    pub fn with_initial_strain(&self, le: usize, gp: usize, eps: &Voigt) -> Voigt {
+        match &self.initial_strain {
+            None => *eps,
+            Some(e0) => {
+                let e0 = &e0[le * self.integration.points() + gp];
+                std::array::from_fn(|i| eps[i] + e0[i])
+            }
+        }
+    }
+
+    /// A new group holding only the elements for which `keep(global id)` is true, in the
+    /// same order (so the colouring and its blocks stay valid), with their geometry,
+    /// point states, initial strains and references.
+    pub fn retain_elements(&self, keep: impl Fn(u32) -> bool) -> ElementGroup {
+        let np = self.integration.points();
+        let stride = self.states.stride();
+        let kept: Vec<usize> = (0..self.len())
+            .filter(|&le| keep(self.elements[le]))
+            .collect();
+        let elements: Vec<u32> = kept.iter().map(|&le| self.elements[le]).collect();
+        let mut colour_ranges = Vec::with_capacity(self.colour_ranges.len());
+        let mut start = 0;
+        for range in &self.colour_ranges {
+            let n = kept.iter().filter(|&&le| range.contains(&le)).count();
+            colour_ranges.push(start..start + n);
+            start += n;
+        }
+        let (blocks, colour_blocks) = colouring_blocks(&elements, &colour_ranges);
+        let geometry = match &self.geometry {
+            GroupGeometry::Uniform(g) => {
+                GroupGeometry::Uniform(kept.iter().map(|&le| g[le]).collect())
+            }
+            GroupGeometry::Full(g) => GroupGeometry::Full(kept.iter().map(|&le| g[le]).collect()),
+        };
+        let current = self.states.current();
+        let states = PointStates::new(stride, kept.len() * np, |p, s| {
+            let (k, gp) = (p / np, p % np);
+            let q = kept[k] * np + gp;
+            s.copy_from_slice(&current[q * stride..(q + 1) * stride]);
+        });
+        ElementGroup {
+            region: self.region,
+            name: self.name.clone(),
+            material: self.material.clone(),
+            integration: self.integration,
+            conn: kept.iter().map(|&le| self.conn[le]).collect(),
+            geometry,
+            char_length: kept.iter().map(|&le| self.char_length[le]).collect(),
+            volume: kept.iter().map(|&le| self.volume[le]).collect(),
+            colour_ranges,
+            blocks,
+            colour_blocks,
+            states,
+            initial_strain: self.initial_strain.as_ref().map(|e0| {
+                kept.iter()
+                    .flat_map(|&le| e0[le * np..(le + 1) * np].iter().copied())
+                    .collect()
+            }),
+            reference: self
+                .reference
+                .as_ref()
+                .map(|r| kept.iter().map(|&le| r[le]).collect()),
+            elements,
+        }
+    }
+
+    /// Copy the committed point states, initial strains and references of the elements
+    /// that `old` also holds (matched by global element id); the other elements keep
+    /// theirs. `old` must be a group of the same region.
+    pub fn carry_point_data_from(&mut self, old: &ElementGroup) {
+        let np = self.integration.points();
+        let stride = self.states.stride();
+        let mut index: Vec<(u32, usize)> = old
+            .elements
+            .iter()
+            .enumerate()
+            .map(|(le, &e)| (e, le))
+            .collect();
+        index.sort_unstable();
+        let find = |e: u32| {
+            index
+                .binary_search_by_key(&e, |x| x.0)
+                .ok()
+                .map(|k| index[k].1)
+        };
+        let mut values = self.states.current().to_vec();
+        let old_states = old.states.current();
+        let mut any_initial = false;
+        let mut any_reference = false;
+        let matches: Vec<(usize, usize)> = (0..self.len())
+            .filter_map(|le| find(self.elements[le]).map(|lo| (le, lo)))
+            .collect();
+        for &(le, lo) in &matches {
+            values[le * np * stride..(le + 1) * np * stride]
+                .copy_from_slice(&old_states[lo * np * stride..(lo + 1) * np * stride]);
+            any_initial |= old.initial_strain.is_some();
+            any_reference |= old.reference.is_some();
+        }
+        self.states.restore(&values);
+        if any_initial {
+            let n = self.len() * np;
+            let e0 = self.initial_strain.get_or_insert_with(|| vec![[0.0; 6]; n]);
+            let src = old.initial_strain.as_ref().expect("checked");
+            for &(le, lo) in &matches {
+                e0[le * np..(le + 1) * np].copy_from_slice(&src[lo * np..(lo + 1) * np]);
+            }
+        }
+        if any_reference {
+            let n = self.len();
+            let r = self.reference.get_or_insert_with(|| vec![[[0.0; 3]; 8]; n]);
+            let src = old.reference.as_ref().expect("checked");
+            for &(le, lo) in &matches {
+                r[le] = src[lo];
+            }
+        }
+    }
+
+    /// Make element `le` stress-free at the nodal displacements `ue` (its reference).
+    pub fn set_reference(&mut self, le: usize, ue: [[f64; 3]; 8]) {
+        let n = self.len();
+        self.reference.get_or_insert_with(|| vec![[[0.0; 3]; 8]; n])[le] = ue;
+    }
+
+    /// Physical coordinates of the integration points of element `le` (one-point: the
+    /// volume centroid; full: the 2×2×2 Gauss points), `x` its nodal coordinates.
+    pub fn point_coordinates(&self, x: &[[f64; 3]; 8]) -> Vec<[f64; 3]> {
+        use crate::element::hex8_shape::{gauss_points, jacobian, shape, shape_derivatives};
+        let gp = gauss_points();
+        let at = |p: &[f64; 3]| -> [f64; 3] {
+            let n = shape(p);
+            std::array::from_fn(|d| (0..8).map(|a| n[a] * x[a][d]).sum())
+        };
+        match self.integration {
+            Integration::OnePoint => {
+                let mut c = [0.0; 3];
+                let mut v = 0.0;
+                for p in &gp {
+                    let (_, det) = jacobian(x, &shape_derivatives(p));
+                    let q = at(p);
+                    for d in 0..3 {
+                        c[d] += det * q[d];
+                    }
+                    v += det;
+                }
+                vec![c.map(|q| q / v)]
+            }
+            Integration::Full => gp.iter().map(at).collect(),
+        }
+    }
+
+    /// Set the initial stress of every integration point to `stress(point coordinates)`
+    /// (Pa, tension positive): stored as the initial strain ε₀ = E₀⁻¹ : σ₀, with the
+    /// material state primed at that strain. `mesh` gives the coordinates.
+    pub fn set_initial_stress(&mut self, mesh: &Mesh, stress: impl Fn(&[f64; 3]) -> Voigt) {
+        let np = self.integration.points();
+        let stride = self.states.stride();
+        let el = *self.material.elastic();
+        let mut e0 = vec![[0.0; 6]; self.len() * np];
+        for le in 0..self.len() {
+            let x = mesh.element_coords(self.elements[le] as usize);
+            for (gp, p) in self.point_coordinates(&x).iter().enumerate() {
+                e0[le * np + gp] = el.strain(&stress(p));
+            }
+        }
+        if stride > 0 {
+            let mut values = self.states.current().to_vec();
+            for (p, s) in values.chunks_exact_mut(stride).enumerate() {
+                self.material.prime_strain(s, &e0[p]);
+            }
+            self.states.restore(&values);
+        }
+        self.initial_strain = Some(e0);
+    }
+
+    /// Stiffness of element `le` with the initial elastic moduli (the exact Jacobian of its
+    /// kernel for an elastic material; `element::stiffness`).
+    pub fn element_stiffness(&self, le: usize) -> crate::element::stiffness::ElementStiffness {
+        use crate::element::stiffness::{full_stiffness, uniform_stiffness};
+        match &self.geometry {
+            GroupGeometry::Uniform(g) => uniform_stiffness(&g[le], self.material.elastic()),
+            GroupGeometry::Full(g) => full_stiffness(&g[le], self.material.elastic()),
+        }
+    }
+
+    /// Volume of integration point `gp` of element `le` (one-point: V; full: w det J).
+    pub fn integration_point_volume(&self, le: usize, gp: usize) -> f64 {
+        self.point_volume(le, gp)
+    }
+}
+
+/// u − u_ref for the eight nodes of an element.
+#[inline(always)]
+fn subtract_reference(ue: &mut [[f64; 3]; 8], r: &[[f64; 3]; 8]) {
+    for a in 0..8 {
+        for d in 0..3 {
+            ue[a][d] -= r[a][d];
+        }
+    }
+}
+
+/// Runs of one colour and one colouring block (`BLOCK` consecutive global elements), in
+/// the group's order, and the range of runs of each colour.
+fn colouring_blocks(
+    elements: &[u32],
+    colour_ranges: &[std::ops::Range<usize>],
+) -> (Vec<std::ops::Range<usize>>, Vec<std::ops::Range<usize>>) {
+    let mut blocks = Vec::new();
+    let mut colour_blocks = Vec::with_capacity(colour_ranges.len());
+    for range in colour_ranges {
+        let first = blocks.len();
+        let mut start = range.start;
+        for le in range.clone() {
+            if le + 1 == range.end
+                || elements[le + 1] as usize / BLOCK != elements[start] as usize / BLOCK
+            {
+                blocks.push(start..le + 1);
+                start = le + 1;
+            }
+        }
+        colour_blocks.push(first..blocks.len());
+    }
+    (blocks, colour_blocks)
 }
 
 #[inline(always)]

@@ -144,11 +144,34 @@ pub fn internal_force(
     ctx: &PointContext,
     f: &mut [[f64; 3]; 8],
 ) -> Voigt {
+    internal_force_with_initial_strain(geo, material, u, None, old, new, ctx, f)
+}
+
+/// [`internal_force`] with an initial strain ε₀ per Gauss point (`eps0[g]`) added to the
+/// strain of the displacements: the material of point g sees ε_g(u) + ε₀_g. With
+/// `eps0 = None` it is [`internal_force`].
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub fn internal_force_with_initial_strain(
+    geo: &FullGeometry,
+    material: &Material,
+    u: &[[f64; 3]; 8],
+    eps0: Option<&[Voigt]>,
+    old: &[f64],
+    new: &mut [f64],
+    ctx: &PointContext,
+    f: &mut [[f64; 3]; 8],
+) -> Voigt {
     let stride = material.state_len();
     *f = [[0.0; 3]; 8];
     let mut mean = [0.0; 6];
     for g in 0..8 {
-        let eps = geo.strain(g, u);
+        let mut eps = geo.strain(g, u);
+        if let Some(e0) = eps0 {
+            for i in 0..6 {
+                eps[i] += e0[g][i];
+            }
+        }
         let range = g * stride..(g + 1) * stride;
         let sigma = material.update(&eps, &old[range.clone()], &mut new[range], ctx);
         geo.add_forces(g, &sigma, f);

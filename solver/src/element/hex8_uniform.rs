@@ -233,8 +233,32 @@ pub fn internal_force(
     ctx: &PointContext,
     f: &mut [[f64; 3]; 8],
 ) -> Voigt {
+    internal_force_with_initial_strain(geo, material, u, None, old, new, ctx, f)
+}
+
+/// [`internal_force`] with an initial strain ε₀ added to the strain of the displacements:
+/// the material sees ε(u) + ε₀ (in-situ stress σ₀ = E₀ : ε₀, see `docs/static_stage.md`);
+/// the hourglass forces see only u. With `eps0 = None` it is [`internal_force`].
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub fn internal_force_with_initial_strain(
+    geo: &UniformGeometry,
+    material: &Material,
+    u: &[[f64; 3]; 8],
+    eps0: Option<&Voigt>,
+    old: &[f64],
+    new: &mut [f64],
+    ctx: &PointContext,
+    f: &mut [[f64; 3]; 8],
+) -> Voigt {
     let (g, gu) = geo.gradient_and_modes(u);
-    let sigma = material.update(&strain_of(&g), old, new, ctx);
+    let mut eps = strain_of(&g);
+    if let Some(e0) = eps0 {
+        for i in 0..6 {
+            eps[i] += e0[i];
+        }
+    }
+    let sigma = material.update(&eps, old, new, ctx);
     let kq = geo.modes_from(&g, &gu).map(|r| r.map(|x| geo.kappa * x));
     geo.forces_kq(&sigma, &kq, f);
     sigma

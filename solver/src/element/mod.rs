@@ -12,6 +12,7 @@ pub mod hex8_uniform;
 pub mod host_locate;
 pub mod lumped_mass;
 pub mod stable_step;
+pub mod stiffness;
 
 /// The trilinear hex8 geometry lives with the mesh (its Jacobian checks validate meshes);
 /// the kernels use it from here.

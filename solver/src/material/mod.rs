@@ -87,6 +87,16 @@ impl Material {
         }
     }
 
+    /// Prime a virgin point state as if the point had been strained elastically to
+    /// `strain` (an initial strain ε₀ set by the static stage): the next update starts its
+    /// increment there. No effect on models that keep no strain.
+    pub fn prime_strain(&self, state: &mut [f64], strain: &Voigt) {
+        match self {
+            Material::Elastic(_) => {}
+            Material::PlasticDamage(p) => p.prime_strain(state, strain),
+        }
+    }
+
     /// Stress at the end of the step from the total strain, updating the point's state
     /// from `old` into `new` (both `state_len()` long).
     #[inline]

@@ -63,22 +63,26 @@ pub fn split_region_pairs(mesh: &mut Mesh, pairs: &[[String; 2]]) -> Result<(), 
         }
     }
     let mut pair_faces: Vec<(Vec<Face>, Vec<Face>)> = vec![(Vec::new(), Vec::new()); idx.len()];
-    for faces in face_of.values() {
-        if faces.len() != 2 {
-            continue;
-        }
-        let (f, g) = (faces[0], faces[1]);
-        let (rf, rg) = (
-            mesh.element_region[f.element as usize],
-            mesh.element_region[g.element as usize],
-        );
-        for (p, &[a, b]) in idx.iter().enumerate() {
-            if rf == a && rg == b {
-                pair_faces[p].0.push(f);
-                pair_faces[p].1.push(g);
-            } else if rf == b && rg == a {
-                pair_faces[p].0.push(g);
-                pair_faces[p].1.push(f);
+    // A face shared by more than two elements (bodies that overlap in volume, e.g. a
+    // lining placed where rock is excavated) belongs to every pair among them.
+    let mut keys: Vec<&[u32; 4]> = face_of.keys().collect();
+    keys.sort_unstable();
+    for faces in keys.into_iter().map(|k| &face_of[k]) {
+        for (i, &f) in faces.iter().enumerate() {
+            for &g in &faces[i + 1..] {
+                let (rf, rg) = (
+                    mesh.element_region[f.element as usize],
+                    mesh.element_region[g.element as usize],
+                );
+                for (p, &[a, b]) in idx.iter().enumerate() {
+                    if rf == a && rg == b {
+                        pair_faces[p].0.push(f);
+                        pair_faces[p].1.push(g);
+                    } else if rf == b && rg == a {
+                        pair_faces[p].0.push(g);
+                        pair_faces[p].1.push(f);
+                    }
+                }
             }
         }
     }

@@ -223,3 +223,12 @@ pub fn read_checkpoint(bytes: &[u8], file: &str, sim: &mut Simulation) -> Result
     sim.energy_account_restored();
     Ok(())
 }
+
+// ---- Static stage block (owner: static stage; docs/static_stage.md) -----------------------
+// A checkpoint of a case with a `[static]` section starts with the static block (magic
+// DCFMSTA1): the post-static configuration (active elements, initial strains, references)
+// and the StaticResult, written by `write_static_block` just before `write_checkpoint`'s
+// bytes. On resume, `read_static_block` (on a model freshly built from the case) rebuilds
+// that configuration and returns the result and the offset where this file's dynamic block
+// begins; a checkpoint without it (no static stage) reads as (None, 0).
+pub use crate::stage::static_stage::checkpoint::{read_static_block, write_static_block};

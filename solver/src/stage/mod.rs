@@ -1,8 +1,10 @@
-//! Analysis stages: the explicit dynamic driver and its energy accounting.
+//! Analysis stages: the static stage (in-situ stress, excavation, activation), the
+//! explicit dynamic driver and its energy accounting.
 
 pub mod checkpoint;
 pub mod dynamic;
 pub mod energy;
+pub mod static_stage;
 
 pub use dynamic::Simulation;
 pub use energy::Energies;

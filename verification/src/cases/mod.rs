@@ -14,9 +14,13 @@ pub mod contact_drop_bounce;
 pub mod convergence_w01;
 pub mod energy_conservation;
 pub mod patch_test;
+pub mod static_geostatic;
+pub mod static_relaxation;
+pub mod static_sequence;
 pub mod w01_wave_pulses;
 pub mod w02_absorbing;
 pub mod w03_site_response;
+pub mod w04_kirsch;
 pub mod w05_bar_impact;
 pub mod w06_incline;
 pub mod w07_newmark_block;
@@ -406,6 +410,66 @@ pub fn all() -> Vec<Case> {
                 tolerance: "Peaks and peak time exact to the sample; phase energy ratios ≥ 2.",
             },
             run: || Ok(w15_synthetic::run()?.into()),
+        },
+        Case {
+            info: CaseInfo {
+                id: "W4",
+                title: "W4 Kirsch opening (static stage)",
+                group: "Static stage",
+                requirement: "A circular opening excavated through the static stage in a \
+                    plate under in-situ stress has Kirsch's wall hoop stress and \
+                    excavation-induced wall displacement for K0 = 0.5, 1 and 1.5.",
+                reference: "Kirsch 1898 (docs/verification_references.md §W4).",
+                tolerance: "Wall stress ±5 % (extrapolated from the first two rings), \
+                    displacement ±2 % (truncation at 40a changes it by ≈ 0.1 %).",
+            },
+            run: || Ok(w04_kirsch::run()?.into()),
+        },
+        Case {
+            info: CaseInfo {
+                id: "static-geo",
+                title: "Static stage: geostatic states",
+                group: "Static stage",
+                requirement: "The gravity in-situ step gives σ_zz = −ρg(H − z) and the \
+                    uniaxial-strain settlement for both integrations, by the direct solve and \
+                    by dynamic relaxation; a given K0 field set as initial stress keeps \
+                    σ_h/σ_v = K0 after equilibration.",
+                reference: "Equilibrium and uniaxial strain of a confined column \
+                    (analytic::ConfinedColumn).",
+                tolerance: "Direct 1e-9 (round-off), relaxation 1e-6 of the settlement, K0 \
+                    ratios ±1e-6 (issue 7).",
+            },
+            run: || Ok(static_geostatic::run()?.into()),
+        },
+        Case {
+            info: CaseInfo {
+                id: "static-DR",
+                title: "Static stage: dynamic relaxation",
+                group: "Static stage",
+                requirement: "Dynamic relaxation reaches the direct solve's equilibrium on the \
+                    same elastic model, and solves a plastic-damage step the direct solve \
+                    refuses.",
+                reference: "The sparse Cholesky solution of the same model; statics of the \
+                    loaded column.",
+                tolerance: "1e-6 of the largest displacement (issue 7).",
+            },
+            run: || Ok(static_relaxation::run()?.into()),
+        },
+        Case {
+            info: CaseInfo {
+                id: "static-seq",
+                title: "Static stage: sequences, activation, hand-over",
+                group: "Static stage",
+                requirement: "Excavating in one step or two gives the same state; placed \
+                    concrete is stress-free and then carries its own weight; the static state \
+                    handed to the dynamic stage stays at rest with zero input.",
+                reference: "Uniqueness of the linear elastic solution; the placed body's own \
+                    weight; rest (peak velocity ≤ 1e-6 m/s, docs/verification_references.md \
+                    §W14).",
+                tolerance: "1e-8 relative between sequences; stress-free to round-off; peak \
+                    velocity ≤ 1e-6 m/s over 2 s.",
+            },
+            run: || Ok(static_sequence::run()?.into()),
         },
     ]
 }

@@ -9,6 +9,17 @@ use crate::mesh::Mesh;
 
 /// The mesh of `[mesh]`, split between the region pairs of `mesh.split`.
 pub(super) fn build_mesh(section: &MeshSection, label: &str, dir: &Path) -> Result<Mesh> {
+    if let Some(spec) = &section.plate_with_hole {
+        if section.gmsh.is_some() || !section.blocks.is_empty() {
+            return Err(DcfmError::invalid(
+                label,
+                "mesh",
+                "plate_with_hole with gmsh or blocks",
+                "one mesh source: a gmsh file, blocks or a plate_with_hole",
+            ));
+        }
+        return spec.build(label);
+    }
     match (&section.gmsh, section.blocks.is_empty()) {
         (Some(_), false) => Err(DcfmError::invalid(
             label,
@@ -20,7 +31,7 @@ pub(super) fn build_mesh(section: &MeshSection, label: &str, dir: &Path) -> Resu
             label,
             "mesh",
             "{}",
-            "a gmsh file (mesh.gmsh) or [[mesh.blocks]]",
+            "a gmsh file (mesh.gmsh), [[mesh.blocks]] or [mesh.plate_with_hole]",
         )),
         (Some(g), true) => {
             let path = dir.join(g);

@@ -12,6 +12,7 @@ mod materials;
 mod mesh;
 mod motions;
 mod output;
+mod static_stage;
 mod time;
 
 pub use materials::build_materials;
@@ -37,6 +38,8 @@ pub struct Case {
     pub output: OutputSection,
     /// The case's ground motions by name (`[motions.NAME]`), for the seismic input.
     pub motions: crate::motion::Motions,
+    /// The static stage (`[static]`), run before the dynamic stage.
+    pub static_plan: Option<crate::stage::static_stage::StaticPlan>,
 }
 
 /// Read, parse and build a case file.
@@ -76,6 +79,8 @@ fn build(mut file: CaseFile, label: &str, dir: &Path) -> Result<Case> {
     loads::build_initial(&mut model, &file.initial, label)?;
     boundary::build_absorbing(&mut model, &file, &materials, label)?;
     output::check_output(&model, &file.output, label)?;
+    let static_plan =
+        static_stage::build_static(&model, file.static_stage.as_ref(), &file.output, label)?;
     let dt = model
         .time_step(file.time.dt, file.time.safety)
         .map_err(|e| e.in_file(label))?;
@@ -88,5 +93,6 @@ fn build(mut file: CaseFile, label: &str, dir: &Path) -> Result<Case> {
         safety: file.time.safety,
         output: file.output,
         motions,
+        static_plan,
     })
 }

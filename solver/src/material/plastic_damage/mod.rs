@@ -124,6 +124,12 @@ impl PlasticDamage {
         s[..slot::LEN].fill(0.0);
     }
 
+    /// Record `strain` as the strain of the last update (the start of the next increment)
+    /// of a point state: an initial strain ε₀ set by the static stage, reached elastically.
+    pub fn prime_strain(&self, s: &mut [f64], strain: &Voigt) {
+        s[slot::STRAIN..slot::STRAIN + 6].copy_from_slice(strain);
+    }
+
     /// Largest characteristic length (m) without snap-back of the uniaxial tensile or
     /// compressive response of one element ([`SofteningLaw::max_char_length`]);
     /// `f64::INFINITY` when the effective strengths never soften.

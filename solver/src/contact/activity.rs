@@ -1,0 +1,87 @@
+//! Which pairs and faces take part in contact while elements are excavated or placed (the
+//! static stage): a node of no active element is dormant and so are the pairs and the
+//! faces of surface b that hold it.
+//!
+//! A pair that comes alive (both nodes active again, or for the first time) starts bonded
+//! and at rest: its reference relative displacement δ₀ = U_b − U_a is the offset at that
+//! moment (concrete placed against rock that has already converged), so the pair formula
+//! of eqs. (6)–(9) measures gaps and slips from there (VERIFICATION.md W9 with δ₀).
+
+use super::geom::sub;
+use super::{ContactSystem, PairState, NONE};
+
+impl ContactSystem {
+    /// Update the activity of every pair and face from the dormant flags of the nodes;
+    /// pairs that come alive get δ₀ from the displacements `u` and the bonded state (paired
+    /// interfaces; point-to-surface nodes keep their state, δ₀ from their partner if any).
+    pub fn set_activity(&mut self, dormant: &[bool], u: &[[f64; 3]]) {
+        for iface in self.interfaces.iter_mut() {
+            for s in iface.slaves.iter_mut() {
+                let alive = !dormant[s.node as usize]
+                    && (s.partner == NONE || !dormant[s.partner as usize]);
+                if alive && !s.active {
+                    if s.partner != NONE {
+                        s.rel0 = sub(u[s.partner as usize], u[s.node as usize]);
+                        if !s.surface {
+                            s.state = PairState::Bonded;
+                        }
+                    }
+                    s.gap = 0.0;
+                    s.slip = [0.0; 3];
+                    s.acc_slip = 0.0;
+                    s.normal_force = 0.0;
+                    s.tangential = [0.0; 3];
+                    s.force = [0.0; 3];
+                }
+                if !alive {
+                    s.normal_force = 0.0;
+                    s.tangential = [0.0; 3];
+                    s.force = [0.0; 3];
+                }
+                s.active = alive;
+            }
+            for (f, a) in iface.b_faces.iter().zip(iface.b_face_active.iter_mut()) {
+                *a = f.iter().all(|&k| !dormant[k as usize]);
+            }
+        }
+    }
+
+    /// The active pairs of point-to-point contact of every interface, with their state:
+    /// (interface, node a, node b, state). For the static solve (bonded pairs are tied).
+    pub fn active_pairs(&self) -> Vec<(usize, u32, u32, PairState)> {
+        let mut out = Vec::new();
+        for (k, iface) in self.interfaces.iter().enumerate() {
+            for s in &iface.slaves {
+                if s.active && !s.surface && s.partner != NONE {
+                    out.push((k, s.node, s.partner, s.state));
+                }
+            }
+        }
+        out
+    }
+
+    /// Whether some active node of interface `k` is in point-to-surface contact.
+    pub fn has_active_surface_nodes(&self, k: usize) -> bool {
+        self.interfaces
+            .get(k)
+            .is_some_and(|i| i.slaves.iter().any(|s| s.active && s.surface))
+    }
+
+    /// Name of interface `k`.
+    pub fn interface_name(&self, k: usize) -> &str {
+        self.interfaces.get(k).map_or("", |i| i.name.as_str())
+    }
+
+    /// The strength of the pair of node `node` of interface `k`: (μs, cA, σt A, unit normal
+    /// of surface a).
+    pub fn pair_strength(&self, k: usize, node: u32) -> Option<(f64, f64, f64, [f64; 3])> {
+        let iface = self.interfaces.get(k)?;
+        let s = iface.slaves.iter().find(|s| s.node == node)?;
+        Some((
+            iface.mu_s,
+            iface.cohesion * s.area,
+            iface.tensile * s.area,
+            s.normal,
+        ))
+    }
+}

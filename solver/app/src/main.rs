@@ -143,6 +143,18 @@ fn main() -> ExitCode {
                     (c.end / c.dt).ceil()
                 );
                 say!("memory    {:.0} bytes per element", m.bytes_per_element());
+                if let Some(b) = &m.boundaries {
+                    for r in &b.reports {
+                        say!("boundary  {}: {}", r.field, r.description);
+                    }
+                    if let Some(ff) = b.free_field_critical_step() {
+                        say!(
+                            "          {} boundary nodes; free-field grids' own critical step {:.4e} s",
+                            b.nodes.len(),
+                            ff
+                        );
+                    }
+                }
                 if let Some(plan) = &c.static_plan {
                     for line in plan.describe() {
                         say!("{line}");

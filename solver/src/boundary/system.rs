@@ -4,15 +4,17 @@
 //!
 //! ```text
 //! F_b = S_b − K_b (Uⁿ) − C_b Vⁿ,    Vⁿ = ½(V^{n−½} + V^{n+½})   (dashpot centred)
-//! S_b = F_static + K_b U_static + Σ_drives (K u_ff + C v_ff + A σ_ff·n)
+//! S_b = K_b U_static + Σ_drives (K u_ff + C v_ff + A σ_ff·n)
 //! ```
 //!
 //! where the sum runs over the boundary contributions driven by the free field: the
 //! equivalent nodal forces of the seismic input F = A (K u_ff + C v_ff + σ_ff·n) at the
-//! base (VERIFICATION.md W2), and the coupling of a buried top face (dashpots on the
-//! velocity relative to the free field plus its traction). The static terms hold a model
-//! at rest in its static state: F_static are the reactions of the static stage's supports
-//! the boundary replaces, U_static the displacement the springs are measured from.
+//! base (docs/verification_references.md §W2), the coupling of the side walls and of a
+//! buried top face (dashpots on the velocity relative to the free field plus its
+//! traction). U_static, the static stage's displacement, is what the springs are measured
+//! from; the reactions of the static supports that the boundaries replace stay on as
+//! constant loads (`static_stage::add_hand_over_loads`), so a model with zero input stays
+//! at rest in its static state.
 
 use std::collections::BTreeMap;
 
@@ -74,9 +76,7 @@ pub struct BoundarySystem {
     pub spring: Vec<Matrix3<f64>>,
     /// Static displacement the springs are measured from.
     u_static: Vec<[f64; 3]>,
-    /// Reactions of the static supports the boundary replaces (N).
-    f_static: Vec<[f64; 3]>,
-    /// F_static + K U_static.
+    /// K U_static.
     constant_source: Vec<[f64; 3]>,
     /// S_b of the current step.
     source: Vec<[f64; 3]>,
@@ -579,7 +579,6 @@ impl BoundarySystem {
             dashpot,
             spring,
             u_static: vec![[0.0; 3]; nb],
-            f_static: vec![[0.0; 3]; nb],
             constant_source: vec![[0.0; 3]; nb],
             source: vec![[0.0; 3]; nb],
             updates: Vec::new(),
@@ -611,16 +610,16 @@ impl BoundarySystem {
     fn refresh_constant_source(&mut self) {
         for b in 0..self.nodes.len() {
             let ku = self.spring[b] * nalgebra::Vector3::from(self.u_static[b]);
-            self.constant_source[b] = std::array::from_fn(|d| self.f_static[b][d] + ku[d]);
+            self.constant_source[b] = [ku[0], ku[1], ku[2]];
         }
     }
 
-    /// The static state the boundaries hold the model in: the displacement `u` (all nodes)
-    /// and the reactions of the static supports these boundaries replace (all nodes).
-    pub fn set_static_state(&mut self, u: &[[f64; 3]], reactions: &[[f64; 3]]) {
+    /// The static displacement `u` (all nodes) the springs are measured from: the model
+    /// stays at rest in its static state (the static supports' reactions that the
+    /// boundaries replace are constant loads, `static_stage::add_hand_over_loads`).
+    pub fn set_static_displacement(&mut self, u: &[[f64; 3]]) {
         for (b, &n) in self.nodes.iter().enumerate() {
             self.u_static[b] = u[n as usize];
-            self.f_static[b] = reactions[n as usize];
         }
         self.refresh_constant_source();
     }
@@ -722,7 +721,7 @@ impl BoundarySystem {
     /// State for checkpoints.
     pub fn state_values(&self) -> Vec<f64> {
         let mut out = Vec::new();
-        for x in self.u_static.iter().chain(&self.f_static) {
+        for x in &self.u_static {
             out.extend(x);
         }
         if let Some(ff) = &self.free_field {
@@ -734,21 +733,18 @@ impl BoundarySystem {
     /// Restore what [`BoundarySystem::state_values`] wrote.
     pub fn restore_state(&mut self, values: &[f64]) -> std::result::Result<(), String> {
         let nb = self.nodes.len();
-        if values.len() < 6 * nb {
+        if values.len() < 3 * nb {
             return Err(format!(
                 "boundary state has {} values, the case's boundaries need at least {}",
                 values.len(),
-                6 * nb
+                3 * nb
             ));
         }
         for (b, x) in self.u_static.iter_mut().enumerate() {
             *x = std::array::from_fn(|d| values[3 * b + d]);
         }
-        for (b, x) in self.f_static.iter_mut().enumerate() {
-            *x = std::array::from_fn(|d| values[3 * (nb + b) + d]);
-        }
         self.refresh_constant_source();
-        let rest = &values[6 * nb..];
+        let rest = &values[3 * nb..];
         match self.free_field.as_mut() {
             Some(ff) => {
                 let used = ff.restore_state(rest)?;

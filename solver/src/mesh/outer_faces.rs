@@ -13,6 +13,49 @@ pub fn outer_faces(mesh: &Mesh) -> Vec<Face> {
     all_faces(mesh).filter(|f| !covered.contains(f)).collect()
 }
 
+/// Add the face sets `outer.xmin`, `outer.xmax`, … `outer.zmax`: the outside faces lying
+/// on each plane of the mesh's bounding box (corners within 1e-6 of the box size), with
+/// node sets of the same names. Sets the mesh already has keep their own definition.
+pub fn add_bounding_box_face_sets(mesh: &mut Mesh) {
+    if mesh.n_nodes() == 0 {
+        return;
+    }
+    let mut lo = [f64::INFINITY; 3];
+    let mut hi = [f64::NEG_INFINITY; 3];
+    for x in &mesh.coords {
+        for d in 0..3 {
+            lo[d] = lo[d].min(x[d]);
+            hi[d] = hi[d].max(x[d]);
+        }
+    }
+    let size = (0..3).map(|d| hi[d] - lo[d]).fold(0.0, f64::max);
+    let tol = 1e-6 * size;
+    let outer = outer_faces(mesh);
+    for (d, axis) in ["x", "y", "z"].iter().enumerate() {
+        for (end, plane) in [("min", lo[d]), ("max", hi[d])] {
+            let name = format!("outer.{axis}{end}");
+            if mesh.face_sets.contains_key(&name) || mesh.node_sets.contains_key(&name) {
+                continue;
+            }
+            let faces: Vec<Face> = outer
+                .iter()
+                .copied()
+                .filter(|&f| {
+                    mesh.face_nodes(f)
+                        .iter()
+                        .all(|&n| (mesh.coords[n as usize][d] - plane).abs() <= tol)
+                })
+                .collect();
+            if faces.is_empty() {
+                continue;
+            }
+            let nodes = mesh.face_set_nodes(&faces);
+            mesh.face_sets.insert(name.clone(), faces);
+            mesh.node_sets.insert(name, nodes);
+        }
+    }
+}
+
 /// Every face of every element.
 fn all_faces(mesh: &Mesh) -> impl Iterator<Item = Face> + '_ {
     (0..mesh.n_elements() as u32)
@@ -89,6 +132,17 @@ mod tests {
             .unwrap();
         let outer = outer_faces(&m);
         assert_eq!(outer.len(), 2 * (2 * 3 + 3 * 4 + 2 * 4));
+    }
+
+    #[test]
+    fn bounding_box_face_sets_cover_the_outer_planes() {
+        let mut m = BoxMeshSpec::single("b", [0.0; 3], [2.0, 3.0, 4.0], [2, 3, 4])
+            .build("t")
+            .unwrap();
+        add_bounding_box_face_sets(&mut m);
+        assert_eq!(m.face_sets["outer.zmin"].len(), 6);
+        assert_eq!(m.face_sets["outer.xmax"].len(), 12);
+        assert_eq!(m.face_sets["outer.zmin"], m.face_sets["b.zmin"]);
     }
 
     #[test]

@@ -13,6 +13,12 @@
 //!                                                     └──────┘ −60  └──────┘
 //! ```
 //!
+//! (c) Quiet transition: a 40 m rock cube settles under gravity in the static stage
+//! (rollers on the sides, base fixed; a 8 m cavern excavated in the second variant), then
+//! the dynamic stage starts with a viscous-spring base, free-field sides and zero input:
+//! the static reactions load the boundaries and the springs are measured from the static
+//! state, so nothing moves (≤ 1e-6 m/s over 2 s, VERIFICATION W14).
+//!
 //! Input: incident half-sine velocity pulses, x 0.01 m/s over 0.02 s (SV), y 0.006 m/s
 //! over 0.03 s (SH), z 0.008 m/s over 0.015 s (P). Reference: the model's own reference
 //! free-field column (a), the full-height model (b). Tolerance (docs/verification_references.md §W14):
@@ -224,6 +230,156 @@ input = true
     Ok(out)
 }
 
+/// (c): peak nodal velocity over 2 s of the dynamic stage after the static stage, with
+/// zero input, with or without a cavern excavated in the static stage.
+fn quiet_transition(cavern: bool) -> Result<f64> {
+    let (blocks, regions, steps) = if cavern {
+        (
+            r#"
+[[mesh.blocks]]
+name = "below"
+region = "rock"
+origin = [0.0, 0.0, 0.0]
+size = [40.0, 40.0, 16.0]
+divisions = [5, 5, 2]
+[[mesh.blocks]]
+name = "above"
+region = "rock"
+origin = [0.0, 0.0, 24.0]
+size = [40.0, 40.0, 16.0]
+divisions = [5, 5, 2]
+[[mesh.blocks]]
+name = "west"
+region = "rock"
+origin = [0.0, 0.0, 16.0]
+size = [16.0, 40.0, 8.0]
+divisions = [2, 5, 1]
+[[mesh.blocks]]
+name = "east"
+region = "rock"
+origin = [24.0, 0.0, 16.0]
+size = [16.0, 40.0, 8.0]
+divisions = [2, 5, 1]
+[[mesh.blocks]]
+name = "south"
+region = "rock"
+origin = [16.0, 0.0, 16.0]
+size = [8.0, 16.0, 8.0]
+divisions = [1, 2, 1]
+[[mesh.blocks]]
+name = "north"
+region = "rock"
+origin = [16.0, 24.0, 16.0]
+size = [8.0, 16.0, 8.0]
+divisions = [1, 2, 1]
+[[mesh.blocks]]
+name = "cavern"
+origin = [16.0, 16.0, 16.0]
+size = [8.0, 8.0, 8.0]
+divisions = [1, 1, 1]
+"#,
+            r#"
+[[regions]]
+name = "rock"
+material = "rock"
+integration = "full"
+[[regions]]
+name = "cavern"
+material = "rock"
+integration = "full"
+"#,
+            r#"
+[[static.steps]]
+name = "cavern"
+excavate = ["cavern"]
+"#,
+        )
+    } else {
+        (
+            r#"
+[[mesh.blocks]]
+name = "cube"
+region = "rock"
+origin = [0.0, 0.0, 0.0]
+size = [40.0, 40.0, 40.0]
+divisions = [5, 5, 5]
+"#,
+            r#"
+[[regions]]
+name = "rock"
+material = "rock"
+integration = "full"
+"#,
+            "",
+        )
+    };
+    let text = format!(
+        r#"
+[time]
+end = 2.0
+[mesh]
+{blocks}
+{MATERIALS}
+{regions}
+[node_sets.base]
+box = [[-1.0, -1.0, -0.001], [41.0, 41.0, 0.001]]
+[node_sets.x_sides]
+box = [[-0.001, -1.0, 0.001], [0.001, 41.0, 41.0]]
+[node_sets.x_far]
+box = [[39.999, -1.0, 0.001], [40.001, 41.0, 41.0]]
+[node_sets.y_sides]
+box = [[-1.0, -0.001, 0.001], [41.0, 0.001, 41.0]]
+[node_sets.y_far]
+box = [[-1.0, 39.999, 0.001], [41.0, 40.001, 41.0]]
+[loads.gravity]
+acceleration = [0.0, 0.0, -9.81]
+[[boundary.absorbing]]
+set = "outer.zmin"
+kind = "viscous_spring"
+input = true
+[boundary.free_field]
+sides = ["outer.xmin", "outer.xmax", "outer.ymin", "outer.ymax"]
+[seismic]
+quantity = "velocity"
+definition = "incident"
+x = {{ type = "constant", value = 0.0 }}
+profile_at = [0.0, 0.0]
+[static]
+solver = "direct"
+[[static.fixed]]
+set = "base"
+dofs = "xyz"
+[[static.fixed]]
+set = "x_sides"
+dofs = "x"
+[[static.fixed]]
+set = "x_far"
+dofs = "x"
+[[static.fixed]]
+set = "y_sides"
+dofs = "y"
+[[static.fixed]]
+set = "y_far"
+dofs = "y"
+[static.in_situ]
+method = "gravity"
+{steps}
+"#
+    );
+    let case = parse_case(&text, "w14c", std::path::Path::new("."))?;
+    let plan = case.static_plan.clone().expect("a static stage");
+    let (model, result) = dcfm::stage::static_stage::run(case.model, &plan)?;
+    let mut sim = dcfm::stage::static_stage::start_dynamic(model, &result, case.dt, case.safety)?;
+    let mut peak = 0.0f64;
+    while sim.time < 2.0 {
+        sim.step()?;
+        for v in &sim.v {
+            peak = peak.max(v[0].abs().max(v[1].abs()).max(v[2].abs()));
+        }
+    }
+    Ok(peak)
+}
+
 /// Run W14.
 pub fn run() -> Result<Vec<CheckRow>> {
     let mut check = Check::new(TITLE);
@@ -249,6 +405,15 @@ pub fn run() -> Result<Vec<CheckRow>> {
             0.0,
             0.02,
             diff / peak,
+            SOURCE,
+        );
+    }
+    for (cavern, name) in [(false, "without"), (true, "with")] {
+        check.within(
+            &format!("static → dynamic, zero input, {name} a cavern: peak velocity over 2 s (m/s)"),
+            0.0,
+            1e-6,
+            quiet_transition(cavern)?,
             SOURCE,
         );
     }

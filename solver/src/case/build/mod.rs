@@ -64,6 +64,7 @@ fn build(mut file: CaseFile, label: &str, dir: &Path) -> Result<Case> {
     let motions = motions::build_motions(&mut file, label, dir)?;
     let mut mesh = mesh::build_mesh(&file.mesh, label, dir)?;
     mesh::add_node_sets(&mut mesh, &file.node_sets, label)?;
+    crate::mesh::outer_faces::add_bounding_box_face_sets(&mut mesh);
     let materials = materials::build_materials(&file.materials, label)?;
     let setups = materials::build_regions(&file.regions, &materials, label)?;
     let mut model = Model::new(mesh, &setups, label)?;

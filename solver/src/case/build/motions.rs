@@ -33,5 +33,12 @@ fn resolve_time_functions(file: &mut CaseFile, motions: &Motions, label: &str) -
             h.resolve_motions(motions, label, "loads.gravity.history")?;
         }
     }
+    if let Some(s) = &mut file.seismic {
+        for (axis, c) in [("x", &mut s.x), ("y", &mut s.y), ("z", &mut s.z)] {
+            if let Some(h) = c {
+                h.resolve_motions(motions, label, &format!("seismic.{axis}"))?;
+            }
+        }
+    }
     Ok(())
 }

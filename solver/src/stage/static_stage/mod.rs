@@ -213,6 +213,10 @@ fn solve_step(
 /// model comes back in its post-static configuration with the dynamic constraints, and
 /// the [`StaticResult`].
 pub fn run(mut model: Model, plan: &StaticPlan) -> Result<(Model, StaticResult)> {
+    // The absorbing boundaries belong to the dynamic stage: the static stage holds the
+    // model on its own supports ([[static.fixed]]), so dashpots and springs stay out of
+    // its equilibrium (the direct solve and the relaxation agree without them).
+    let boundaries = model.boundaries.take();
     let n = model.mesh.n_nodes();
     let dynamic_constraints: Constraints = model.constraints.clone();
     let mut act = Activation::new(&model);
@@ -345,6 +349,7 @@ pub fn run(mut model: Model, plan: &StaticPlan) -> Result<(Model, StaticResult)>
     result.u = u;
     result.history = history;
     result.active = act.active.clone();
+    model.boundaries = boundaries;
     Ok((model, result))
 }
 

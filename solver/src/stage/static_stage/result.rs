@@ -126,6 +126,10 @@ pub fn start_dynamic(
     add_hand_over_loads(&mut model, result);
     let mut sim = Simulation::new(model, dt, safety)?;
     sim.u.copy_from_slice(&result.u);
+    // Absorbing springs are measured from the static state.
+    if let Some(b) = sim.model.boundaries.as_mut() {
+        b.set_static_displacement(&result.u);
+    }
     sim.restart_energy_account();
     Ok(sim)
 }

@@ -117,25 +117,34 @@ class FipyColumn:
             self.b.constrain(0.0, self.mesh.facesLeft)
         self.h0, self.g0 = dx[0], g[0]
         self.top = np.asarray(self.mesh.facesRight.value)
+        self.mat0, self.rhs0 = self.assemble(0.0)
+        mat1, rhs1 = self.assemble(1.0)
+        self.mat1, self.rhs1 = mat1 - self.mat0, rhs1 - self.rhs0
 
-    def __call__(self, f: float) -> float:
-        import scipy.sparse as sp
-        import scipy.sparse.linalg as sla
-
+    def assemble(self, w: float):
+        """FiPy's matrix and right-hand side of the two coupled diffusion equations at
+        angular frequency `w` (assembled only: FiPy's own solve of the diffusion terms
+        alone would be singular on the half-space, whose base has no constraint)."""
         fp = self.fp
-        w = 2 * np.pi * f
         a, b = self.a, self.b
         eq_a = fp.DiffusionTerm(coeff=self.g, var=a) - fp.DiffusionTerm(coeff=self.g * (w * BETA), var=b) == 0
         eq_b = fp.DiffusionTerm(coeff=self.g, var=b) + fp.DiffusionTerm(coeff=self.g * (w * BETA), var=a) == 0
         eq = eq_a & eq_b
         eq.cacheMatrix()
         eq.cacheRHSvector()
-        # Assemble the matrix and right-hand side only (FiPy's own solve of the diffusion
-        # terms alone would be singular on the half-space, whose base has no constraint);
-        # the ω² and mass-damping terms and the base condition are added below.
         eq._prepareLinearSystem(var=None, solver=None, boundaryConditions=(), dt=None)
-        mat = eq.matrix.matrix.tocsr()
-        rhs = np.asarray(eq.RHSvector, dtype=float)
+        return eq.matrix.matrix.tocsr(), np.asarray(eq.RHSvector, dtype=float)
+
+    def __call__(self, f: float) -> float:
+        import scipy.sparse as sp
+        import scipy.sparse.linalg as sla
+
+        w = 2 * np.pi * f
+        a, b = self.a, self.b
+        # The coefficients are G and Gωβ, so FiPy's matrix and right-hand side are affine
+        # in ω: assembled at ω = 0 and 1 once (in the constructor) and combined here.
+        mat = self.mat0 + w * self.mat1
+        rhs = self.rhs0 + w * self.rhs1
         inertia = self.rho * w**2 * self.volume
         mass_damping = self.rho * w * ALPHA * self.volume
         sources = sp.bmat([[sp.diags(inertia), sp.diags(mass_damping)], [sp.diags(-mass_damping), sp.diags(inertia)]])

@@ -139,8 +139,8 @@ fn main() -> ExitCode {
                     "time      Δt = {:.4e} s (safety {}), end {} s → {} steps",
                     c.dt,
                     c.safety,
-                    c.end,
-                    (c.end / c.dt).ceil()
+                    readable(c.end),
+                    readable((c.end / c.dt).ceil())
                 );
                 say!("memory    {:.0} bytes per element", m.bytes_per_element());
                 if let Some(b) = &m.boundaries {
@@ -160,6 +160,9 @@ fn main() -> ExitCode {
                         say!("{line}");
                     }
                 }
+                for line in c.probes.describe() {
+                    say!("{line}");
+                }
                 ExitCode::SUCCESS
             }
             Err(e) => {
@@ -174,10 +177,15 @@ fn main() -> ExitCode {
             resume,
             quiet,
         } => {
-            if let Some(n) = threads {
+            if let Some(mut n) = threads {
                 if n == 0 {
                     esay!("error: --threads 0: expected at least 1");
                     return ExitCode::from(2);
+                }
+                let cores = std::thread::available_parallelism().map_or(n, |c| c.get());
+                if n > cores {
+                    esay!("note: --threads {n} is more than the {cores} cores here; using {cores}");
+                    n = cores;
                 }
                 if let Err(e) = rayon::ThreadPoolBuilder::new()
                     .num_threads(n)
@@ -201,6 +209,12 @@ fn main() -> ExitCode {
                     return ExitCode::from(2);
                 }
             };
+            if resume && !out.join("checkpoint.bin").exists() {
+                esay!(
+                    "note: --resume: no checkpoint in {}; starting from scratch",
+                    out.display()
+                );
+            }
             let opts = RunOptions {
                 out: out.clone(),
                 resume,
@@ -227,5 +241,15 @@ fn main() -> ExitCode {
                 }
             }
         }
+    }
+}
+
+/// A count or a time as a person reads it: plain up to 10⁹, then in exponent form (an end
+/// time of 1e30 s is not printed as 31 digits).
+fn readable(x: f64) -> String {
+    if x.is_finite() && x.abs() < 1e9 {
+        format!("{x}")
+    } else {
+        format!("{x:.4e}")
     }
 }

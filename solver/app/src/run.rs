@@ -7,6 +7,7 @@ use std::time::Instant;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use serde::Serialize;
 
+use dcfm::case::probes::Probes;
 use dcfm::case::{Case, OutputSection};
 use dcfm::error::{DcfmError, Result};
 use dcfm::stage::checkpoint::{read_checkpoint, write_checkpoint};
@@ -58,81 +59,187 @@ pub struct RunSummary {
     pub peak_displacement: Peak,
     pub peak_velocity: Peak,
     pub resumed_from_step: Option<u64>,
+    /// The probes of histories.csv and how each was found (node chosen for a point and
+    /// its distance, the set of a mean).
+    pub probes: Probes,
 }
 
 fn norm(x: &[f64; 3]) -> f64 {
     (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt()
 }
 
-fn history_header(output: &OutputSection, sim: &Simulation) -> Vec<String> {
-    let mut h: Vec<String> = [
-        "time", "kinetic", "internal", "damping", "contact", "external", "input", "boundary",
-        "residual",
-    ]
-    .iter()
-    .map(|s| s.to_string())
-    .collect();
-    for n in &output.nodes {
-        for q in ["u", "v", "a"] {
-            for d in ["x", "y", "z"] {
-                h.push(format!("node{n}_{q}{d}"));
-            }
-        }
-    }
-    for e in &output.elements {
-        for c in ["xx", "yy", "zz", "xy", "yz", "zx"] {
-            h.push(format!("elem{e}_s{c}"));
-        }
-    }
-    for g in sim.model.groups.iter().filter(|g| g.material.has_damage()) {
-        for k in ["tension", "compression", "total"] {
-            h.push(format!("damaged_volume_{k}_{}", g.name));
-        }
-    }
-    if let Some(c) = &sim.model.contact {
-        for (name, _) in c.state_areas() {
-            for k in ["stick", "slide", "separated", "surface"] {
-                h.push(format!("area_{k}_{name}"));
-            }
-        }
-        h.push("contact_friction_work".into());
-    }
-    h
+/// The probes' column groups and what they read, resolved once before the step loop so
+/// that a history row allocates nothing.
+struct HistoryColumns {
+    probes: Probes,
+    /// Per node probe: its contact record (interface, record, sign) when it is a single
+    /// node on a contact interface (`ContactSystem::locate_node`).
+    contact_of: Vec<Option<(usize, usize, f64)>>,
+    /// Per element probe: the volume of each of its elements (m³), for a volume mean.
+    volumes: Vec<Vec<f64>>,
+    /// Number of contact interfaces.
+    interfaces: usize,
 }
 
-fn history_row(sim: &Simulation, output: &OutputSection, row: &mut Vec<f64>) {
-    row.clear();
-    let e = &sim.energies;
-    row.extend([
-        sim.time,
-        e.kinetic,
-        e.internal,
-        e.damping,
-        e.contact,
-        e.external,
-        e.input,
-        e.boundary,
-        e.residual(),
-    ]);
-    for &n in &output.nodes {
-        let n = n as usize;
-        row.extend(sim.u[n]);
-        row.extend(sim.v[n]);
-        row.extend(sim.a[n]);
-    }
-    for &el in &output.elements {
-        let (_, s) = sim.model.element_strain_stress(el as usize, &sim.u);
-        row.extend(s);
-    }
-    for g in sim.model.groups.iter().filter(|g| g.material.has_damage()) {
-        let per_element = output.damaged_volume == dcfm::case::DamagedVolumeMeasure::Element;
-        row.extend(g.damaged_volume(output.damage_threshold, per_element));
-    }
-    if let Some(c) = &sim.model.contact {
-        for (_, a) in c.state_areas() {
-            row.extend(a);
+/// Names of the columns of a node probe's contact record (`ContactSystem::node_record`).
+const CONTACT_COLUMNS: [&str; 10] = [
+    "contact_state",
+    "gap",
+    "normal_force",
+    "ftx",
+    "fty",
+    "ftz",
+    "slipx",
+    "slipy",
+    "slipz",
+    "slip_acc",
+];
+
+impl HistoryColumns {
+    fn new(probes: &Probes, sim: &Simulation) -> Self {
+        let model = &sim.model;
+        let contact_of = probes
+            .nodes
+            .iter()
+            .map(|p| match (&model.contact, p.mean) {
+                (Some(c), false) => c.locate_node(p.nodes[0]),
+                _ => None,
+            })
+            .collect();
+        let volumes = probes
+            .elements
+            .iter()
+            .map(|p| {
+                p.elements
+                    .iter()
+                    .map(|&e| {
+                        let (g, le) = model.element_location[e as usize];
+                        model
+                            .groups
+                            .get(g as usize)
+                            .and_then(|g| g.volume.get(le as usize))
+                            .copied()
+                            .unwrap_or(0.0)
+                    })
+                    .collect()
+            })
+            .collect();
+        Self {
+            probes: probes.clone(),
+            contact_of,
+            volumes,
+            interfaces: model
+                .contact
+                .as_ref()
+                .map_or(0, |c| c.interface_names().len()),
         }
-        row.push(c.friction_work());
+    }
+
+    /// Column names: energies, node probes (`{name}_ux` … `{name}_az`, then the contact
+    /// record of a node on an interface), element probes (`{name}_sxx` … `{name}_szx`),
+    /// damaged volumes, anchor bar groups (largest axial force, yielded segments), contact
+    /// areas per state and friction work.
+    fn header(&self, sim: &Simulation) -> Vec<String> {
+        let mut h: Vec<String> = [
+            "time", "kinetic", "internal", "damping", "contact", "external", "input", "boundary",
+            "residual",
+        ]
+        .iter()
+        .map(|s| s.to_string())
+        .collect();
+        for (p, contact) in self.probes.nodes.iter().zip(&self.contact_of) {
+            for q in ["u", "v", "a"] {
+                for d in ["x", "y", "z"] {
+                    h.push(format!("{}_{q}{d}", p.label));
+                }
+            }
+            if contact.is_some() {
+                for c in CONTACT_COLUMNS {
+                    h.push(format!("{}_{c}", p.label));
+                }
+            }
+        }
+        for p in &self.probes.elements {
+            for c in ["xx", "yy", "zz", "xy", "yz", "zx"] {
+                h.push(format!("{}_s{c}", p.label));
+            }
+        }
+        for g in sim.model.groups.iter().filter(|g| g.material.has_damage()) {
+            for k in ["tension", "compression", "total"] {
+                h.push(format!("damaged_volume_{k}_{}", g.name));
+            }
+        }
+        if let Some(a) = &sim.model.anchors {
+            h.extend(a.history_names());
+        }
+        if let Some(c) = &sim.model.contact {
+            for name in c.interface_names() {
+                for k in ["bonded", "stick", "slide", "separated", "surface"] {
+                    h.push(format!("area_{k}_{name}"));
+                }
+            }
+            h.push("contact_friction_work".into());
+        }
+        h
+    }
+
+    fn row(&self, sim: &Simulation, output: &OutputSection, row: &mut Vec<f64>) {
+        row.clear();
+        let e = &sim.energies;
+        row.extend([
+            sim.time,
+            e.kinetic,
+            e.internal,
+            e.damping,
+            e.contact,
+            e.external,
+            e.input,
+            e.boundary,
+            e.residual(),
+        ]);
+        for (p, contact) in self.probes.nodes.iter().zip(&self.contact_of) {
+            for field in [&sim.u, &sim.v, &sim.a] {
+                let mut m = [0.0; 3];
+                for &n in &p.nodes {
+                    for (md, x) in m.iter_mut().zip(field[n as usize]) {
+                        *md += x;
+                    }
+                }
+                row.extend(m.map(|x| x / p.nodes.len() as f64));
+            }
+            if let (Some((k, j, sign)), Some(c)) = (contact, &sim.model.contact) {
+                row.extend(c.node_record(*k, *j, *sign));
+            }
+        }
+        for (p, volumes) in self.probes.elements.iter().zip(&self.volumes) {
+            if let ([e], false) = (p.elements.as_slice(), p.mean) {
+                row.extend(sim.model.element_strain_stress(*e as usize, &sim.u).1);
+                continue;
+            }
+            let mut m = [0.0; 6];
+            let mut total = 0.0;
+            for (&e, &vol) in p.elements.iter().zip(volumes) {
+                let (_, s) = sim.model.element_strain_stress(e as usize, &sim.u);
+                for (md, x) in m.iter_mut().zip(s) {
+                    *md += vol * x;
+                }
+                total += vol;
+            }
+            row.extend(m.map(|x| x / total));
+        }
+        for g in sim.model.groups.iter().filter(|g| g.material.has_damage()) {
+            let per_element = output.damaged_volume == dcfm::case::DamagedVolumeMeasure::Element;
+            row.extend(g.damaged_volume(output.damage_threshold, per_element));
+        }
+        if let Some(a) = &sim.model.anchors {
+            a.history_values(row);
+        }
+        if let Some(c) = &sim.model.contact {
+            for k in 0..self.interfaces {
+                row.extend(c.state_area_split(k));
+            }
+            row.push(c.friction_work());
+        }
     }
 }
 
@@ -143,7 +250,9 @@ fn write_state_vtu(sim: &Simulation, out: &Path, pvd: &mut PvdCollection) -> Res
     let mut stress = vec![0.0; 6 * ne];
     let mut strain = vec![0.0; 6 * ne];
     let mut damage = vec![0.0; 11 * ne];
-    let mut region = vec![0.0; ne];
+    // Inactive cells (excavated, not yet placed) keep region −1 and active 0.
+    let mut region = vec![-1.0; ne];
+    let (cell_active, point_active) = crate::output::activity::activity_fields(model);
     for g in &model.groups {
         let ss = g.element_strain_stress(&sim.u);
         let dmg = g.element_damage_fields();
@@ -193,6 +302,11 @@ fn write_state_vtu(sim: &Simulation, out: &Path, pvd: &mut PvdCollection) -> Res
             name: "acceleration",
             components: 3,
             values: &a,
+        },
+        VtuField {
+            name: "active",
+            components: 1,
+            values: &point_active,
         },
     ];
     for (name, components, values) in &contact_fields {
@@ -254,9 +368,79 @@ fn write_state_vtu(sim: &Simulation, out: &Path, pvd: &mut PvdCollection) -> Res
                 components: 1,
                 values: &region,
             },
+            VtuField {
+                name: "active",
+                components: 1,
+                values: &cell_active,
+            },
         ],
     )?;
     pvd.add(sim.time, &name)
+}
+
+/// Magic of the run driver's block at the end of a checkpoint: the peaks so far.
+const PEAKS_MAGIC: &[u8; 8] = b"DCFMPK01";
+
+/// Append the peaks to a checkpoint (after the dynamic block), so that a resumed run keeps
+/// the maxima over the whole run, not only over its resumed part.
+fn write_peaks(w: &mut impl std::io::Write, peaks: &[Peak; 2]) -> std::io::Result<()> {
+    w.write_all(PEAKS_MAGIC)?;
+    for p in peaks {
+        for x in [p.value, p.node as f64, p.time] {
+            w.write_all(&x.to_le_bytes())?;
+        }
+    }
+    Ok(())
+}
+
+/// The peaks at the end of a checkpoint written with [`write_peaks`]; zero peaks for a
+/// checkpoint without that block.
+fn read_peaks(bytes: &[u8]) -> [Peak; 2] {
+    const LEN: usize = 8 + 6 * 8;
+    let Some(tail) = bytes.len().checked_sub(LEN).map(|k| &bytes[k..]) else {
+        return [Peak::default(); 2];
+    };
+    if &tail[..8] != PEAKS_MAGIC {
+        return [Peak::default(); 2];
+    }
+    let x: Vec<f64> = tail[8..]
+        .chunks_exact(8)
+        .map(|c| f64::from_le_bytes(c.try_into().expect("8 bytes")))
+        .collect();
+    [0, 3].map(|k| Peak {
+        value: x[k],
+        node: x[k + 1] as usize,
+        time: x[k + 2],
+    })
+}
+
+/// Step of a VTU frame written by [`write_state_vtu`] (`mesh_000120.vtu` → 120).
+fn frame_step(file: &str) -> Option<u64> {
+    let digits = file.strip_prefix("mesh_")?.strip_suffix(".vtu")?;
+    if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
+        return None;
+    }
+    digits.parse().ok()
+}
+
+/// Remove from `out` the VTU frames that `pvd` does not list (left by an earlier run in
+/// the same folder, or written after the checkpoint a run resumes from) and the temporary
+/// files of atomic writes that a killed process left (`.<name>.<pid>.<n>.tmp`, another
+/// pid), so that the folder holds exactly this run's frames.
+fn remove_stale_files(out: &Path, pvd: &PvdCollection) -> Result<()> {
+    let io = |e| DcfmError::io(out.display().to_string(), e);
+    let own = format!(".{}.", std::process::id());
+    for entry in std::fs::read_dir(out).map_err(io)? {
+        let entry = entry.map_err(io)?;
+        let name = entry.file_name().to_string_lossy().into_owned();
+        let stale_frame =
+            frame_step(&name).is_some() && !pvd.entries().iter().any(|e| e.file == name);
+        let killed_write = name.starts_with('.') && name.ends_with(".tmp") && !name.contains(&own);
+        if (stale_frame || killed_write) && entry.file_type().map_err(io)?.is_file() {
+            std::fs::remove_file(entry.path()).map_err(io)?;
+        }
+    }
+    Ok(())
 }
 
 /// Run a case to its end time, writing outputs under `opts.out`.
@@ -292,11 +476,13 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
     if staged.fresh {
         write_atomic_with(&checkpoint, |w| {
             crate::static_run::write_static(w, static_result.as_ref(), &sim.model)?;
-            write_checkpoint(w, &sim)
+            write_checkpoint(w, &sim)?;
+            write_peaks(w, &[Peak::default(); 2])
         })?;
     }
     // ---- end of the static stage hook ---------------------------------------------------
-    let header = history_header(&output, &sim);
+    let columns = HistoryColumns::new(&case.probes, &sim);
+    let header = columns.header(&sim);
     let mut resumed_from = None;
     if let Some(bytes) = &resume_bytes {
         read_checkpoint(&bytes[staged.dynamic_offset..], &ckpt_label, &mut sim)?;
@@ -305,8 +491,16 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
     let pvd_path = out.join("case.pvd");
     let hist_path = out.join("histories.csv");
     let (mut pvd, mut hist) = if resumed_from.is_some() {
+        // Keep the frames this run's schedule writes up to the restart (not the end frame
+        // of the interrupted run), so that the collection is that of an uninterrupted run.
         let mut p = PvdCollection::resume(&pvd_path)?;
         p.truncate_after(sim.time)?;
+        let restart = sim.step;
+        p.retain(|e| {
+            frame_step(&e.file).is_some_and(|s| {
+                s == 0 || (s <= restart && output.vtu_every > 0 && s % output.vtu_every == 0)
+            })
+        })?;
         (
             p,
             HistoryWriter::open_append_after(&hist_path, &header, sim.time)?,
@@ -314,12 +508,13 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
     } else {
         let mut h = HistoryWriter::create(&hist_path, &header)?;
         let mut row = Vec::new();
-        history_row(&sim, &output, &mut row);
+        columns.row(&sim, &output, &mut row);
         h.append(&row)?;
         let mut p = PvdCollection::create(&pvd_path)?;
         write_state_vtu(&sim, out, &mut p)?;
         (p, h)
     };
+    remove_stale_files(out, &pvd)?;
     let bar = if opts.progress {
         let b = ProgressBar::with_draw_target(Some(total_steps), ProgressDrawTarget::stderr());
         b.set_style(
@@ -332,8 +527,9 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
         ProgressBar::hidden()
     };
     let n_elements = sim.model.n_elements();
-    let mut peak_u = Peak::default();
-    let mut peak_v = Peak::default();
+    let [mut peak_u, mut peak_v] = resume_bytes
+        .as_deref()
+        .map_or([Peak::default(); 2], read_peaks);
     let mut row = Vec::with_capacity(header.len());
     let start_step = sim.step;
     let t0 = Instant::now();
@@ -342,7 +538,7 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
             let _ = hist.flush();
         })?;
         if sim.step % output.history_every == 0 || sim.step == total_steps {
-            history_row(&sim, &output, &mut row);
+            columns.row(&sim, &output, &mut row);
             hist.append(&row)?;
             for (i, (u, v)) in sim.u.iter().zip(&sim.v).enumerate() {
                 let (nu, nv) = (norm(u), norm(v));
@@ -369,7 +565,8 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
             hist.flush()?;
             write_atomic_with(&checkpoint, |w| {
                 crate::static_run::write_static(w, static_result.as_ref(), &sim.model)?;
-                write_checkpoint(w, &sim)
+                write_checkpoint(w, &sim)?;
+                write_peaks(w, &[peak_u, peak_v])
             })?;
         }
         if sim.step % 64 == 0 {
@@ -407,6 +604,7 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
         peak_displacement: peak_u,
         peak_velocity: peak_v,
         resumed_from_step: resumed_from,
+        probes: columns.probes,
     };
     write_summary(&out.join("summary.json"), &summary)?;
     Ok(summary)

@@ -94,6 +94,64 @@ pub struct OutputSection {
     /// from its volume-averaged damage ("element").
     #[serde(default)]
     pub damaged_volume: DamagedVolumeMeasure,
+    /// Node probes by name: a point, a node id or a set (`[[output.probes]]`).
+    #[serde(default)]
+    pub probes: Vec<NodeProbeSpec>,
+    /// Element probes by name: a point, an element id or a set (`[[output.element_probes]]`).
+    #[serde(default)]
+    pub element_probes: Vec<ElementProbeSpec>,
+}
+
+/// How a probe on a set reports.
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum ProbeReduce {
+    /// One group of columns per node (element) of the set.
+    #[default]
+    Each,
+    /// The mean over the set (displacement, velocity, acceleration; stress).
+    Mean,
+}
+
+/// `[[output.probes]]`: a named node probe; exactly one of `at`, `node`, `set`.
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct NodeProbeSpec {
+    /// Column prefix (`crest` → `crest_ux`, …).
+    pub name: String,
+    /// A point (m): the nearest node of the model.
+    #[serde(default)]
+    pub at: Option<[f64; 3]>,
+    /// A node id.
+    #[serde(default)]
+    pub node: Option<u32>,
+    /// A node, face or element set or a region.
+    #[serde(default)]
+    pub set: Option<String>,
+    /// For a set: every node ("each", default) or the mean ("mean").
+    #[serde(default)]
+    pub reduce: ProbeReduce,
+}
+
+/// `[[output.element_probes]]`: a named element probe; exactly one of `at`, `element`,
+/// `set`.
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct ElementProbeSpec {
+    /// Column prefix (`crown` → `crown_sxx`, …).
+    pub name: String,
+    /// A point (m): the element that contains it.
+    #[serde(default)]
+    pub at: Option<[f64; 3]>,
+    /// An element id.
+    #[serde(default)]
+    pub element: Option<u32>,
+    /// An element set or a region.
+    #[serde(default)]
+    pub set: Option<String>,
+    /// For a set: every element ("each", default) or the volume mean ("mean").
+    #[serde(default)]
+    pub reduce: ProbeReduce,
 }
 
 /// How the damaged volume of eq. (27) is measured.
@@ -121,6 +179,8 @@ impl Default for OutputSection {
             checkpoint_every: 0,
             damage_threshold: default_damage_threshold(),
             damaged_volume: DamagedVolumeMeasure::Point,
+            probes: Vec::new(),
+            element_probes: Vec::new(),
         }
     }
 }

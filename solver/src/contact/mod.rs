@@ -591,6 +591,81 @@ impl ContactSystem {
             .collect()
     }
 
+    /// Names of the interfaces, in input order.
+    pub fn interface_names(&self) -> Vec<String> {
+        self.interfaces.iter().map(|i| i.name.clone()).collect()
+    }
+
+    /// Area of interface `k` (control areas of surface a, active nodes) per state whatever
+    /// the mode: `[bonded, sticking, sliding, separated, of which in point-to-surface
+    /// contact]` — the map of the paper's Figures 13–14. A point-to-surface node without a
+    /// face under it counts as separated. Allocation-free (for history rows).
+    pub fn state_area_split(&self, k: usize) -> [f64; 5] {
+        let mut a = [0.0; 5];
+        if let Some(iface) = self.interfaces.get(k) {
+            for s in iface.slaves.iter().filter(|s| s.active) {
+                let state = if s.surface && s.face == NONE {
+                    PairState::Separated
+                } else {
+                    s.state
+                };
+                a[state.code() as usize] += s.area;
+                if s.surface && state != PairState::Separated {
+                    a[4] += s.area;
+                }
+            }
+        }
+        a
+    }
+
+    /// Where `node` takes part in contact: (interface, index of its record, sign) with
+    /// sign +1 for the node of surface a and −1 for the partner of a pair (whose slip and
+    /// tangential force are the pair's reversed); `None` for a node on no interface. The
+    /// first interface in input order wins. A lookup for setting up probes (linear).
+    pub fn locate_node(&self, node: u32) -> Option<(usize, usize, f64)> {
+        for (k, iface) in self.interfaces.iter().enumerate() {
+            for (j, s) in iface.slaves.iter().enumerate() {
+                if s.node == node {
+                    return Some((k, j, 1.0));
+                }
+                if s.partner == node {
+                    return Some((k, j, -1.0));
+                }
+            }
+        }
+        None
+    }
+
+    /// The contact record `j` of interface `k` seen from a node with `sign` (see
+    /// [`ContactSystem::locate_node`]): [state code (0 bonded, 1 stick, 2 sliding,
+    /// 3 separated, +10 point-to-surface; −1 dormant), gap (m), normal force (N,
+    /// compression positive), tangential force x, y, z (N), slip x, y, z (m), accumulated
+    /// slip (m)]. Allocation-free (for history rows).
+    pub fn node_record(&self, k: usize, j: usize, sign: f64) -> [f64; 10] {
+        let Some(s) = self.interfaces.get(k).and_then(|i| i.slaves.get(j)) else {
+            return [f64::NAN; 10];
+        };
+        // A pair that switched to point-to-surface contact no longer moves its old partner.
+        if !s.active || (sign < 0.0 && s.partner == NONE) {
+            let mut r = [0.0; 10];
+            r[0] = -1.0;
+            return r;
+        }
+        let code = s.state.code() as f64 + if s.surface { 10.0 } else { 0.0 };
+        [
+            code,
+            s.gap,
+            s.normal_force,
+            sign * s.tangential[0],
+            sign * s.tangential[1],
+            sign * s.tangential[2],
+            sign * s.slip[0],
+            sign * s.slip[1],
+            sign * s.slip[2],
+            s.acc_slip,
+        ]
+    }
+
     /// Number of slave nodes per state code (0–3, +10 in point-to-surface) of interface
     /// `k`, for tests and summaries: `[bonded, stick, sliding, separated]` for pairs and
     /// the same for point-to-surface nodes.

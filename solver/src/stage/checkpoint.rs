@@ -1,6 +1,7 @@
 //! Checkpoints of a running simulation, so that long runs can be resumed: displacements,
 //! half-step velocities, accelerations, energies, every integration-point state and the
-//! state of every contact interface, as little-endian bytes. The core only serialises;
+//! state of every contact interface, the absorbing boundaries and the anchor bars, as
+//! little-endian bytes. The core only serialises;
 //! the application writes the bytes to a file (atomically) and reads them back.
 
 use std::io::Write;
@@ -8,7 +9,8 @@ use std::io::Write;
 use crate::error::{DcfmError, Result};
 use crate::stage::{Energies, Simulation};
 
-const MAGIC: &[u8; 8] = b"DCFMCKP3";
+/// Version 4 adds the anchor bars' state (plastic strains, bond–slip nodes).
+const MAGIC: &[u8; 8] = b"DCFMCKP4";
 
 fn put_f64s(w: &mut impl Write, xs: &[f64]) -> std::io::Result<()> {
     for x in xs {
@@ -75,6 +77,14 @@ pub fn write_checkpoint(w: &mut impl Write, sim: &Simulation) -> std::io::Result
             .unwrap_or_default();
         w.write_all(&(boundary.len() as u64).to_le_bytes())?;
         put_f64s(w, &boundary)?;
+        let anchors = sim
+            .model
+            .anchors
+            .as_ref()
+            .map(|a| a.state())
+            .unwrap_or_default();
+        w.write_all(&(anchors.len() as u64).to_le_bytes())?;
+        put_f64s(w, &anchors)?;
         Ok(())
     }
 }
@@ -124,10 +134,16 @@ pub fn read_checkpoint(bytes: &[u8], file: &str, sim: &mut Simulation) -> Result
             "checkpoint has {found} {what}, the case has {expected}: it belongs to another case"
         ),
     };
-    if r.take(8)? != MAGIC {
+    let magic = r.take(8)?;
+    if magic != MAGIC {
+        let message = if magic.starts_with(b"DCFMCKP") {
+            "a checkpoint of an older dcfm version (no anchor bar state): run without --resume"
+        } else {
+            "not a dcfm checkpoint (bad magic)"
+        };
         return Err(DcfmError::Parse {
             file,
-            message: "not a dcfm checkpoint (bad magic)".into(),
+            message: message.into(),
         });
     }
     let n = r.u64()?;
@@ -206,6 +222,24 @@ pub fn read_checkpoint(bytes: &[u8], file: &str, sim: &mut Simulation) -> Result
             })
         }
         None => {}
+    }
+    let na = r.u64()? as usize;
+    let anchors: Vec<f64> = (0..na).map(|_| r.f64()).collect::<Result<_>>()?;
+    let has_anchors = sim.model.anchors.is_some();
+    let restored = match sim.model.anchors.as_mut() {
+        Some(a) => a.restore_state(&anchors),
+        None => na == 0,
+    };
+    if !restored {
+        let message = if has_anchors {
+            format!(
+                "checkpoint has {na} anchor bar state values, the case's bars another number: \
+                 it belongs to another case"
+            )
+        } else {
+            "checkpoint has anchor bar state but the case has no anchors".into()
+        };
+        return Err(DcfmError::Parse { file, message });
     }
     sim.step = step;
     sim.time = time;

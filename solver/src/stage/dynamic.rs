@@ -506,26 +506,180 @@ impl Simulation {
         Ok(())
     }
 
+    /// The error of an instability found at `node`, with its likely cause read from what
+    /// is large there (issue 13 item 3), in this order:
+    /// 1. the step above a stability limit — and which term sets that limit: the elements
+    ///    (the limiting element), the anchor bars, the absorbing boundaries' springs, the
+    ///    free-field grids or Rayleigh damping (α, β);
+    /// 2. an element around the node inverted (a corner Jacobian of the deformed element
+    ///    ≤ 0);
+    /// 3. a material update that diverged (a non-finite stress, or a plastic-damage
+    ///    stress far above the material's strength);
+    /// 4. strains of order one (a small-strain model driven far outside its range);
+    /// 5. heavy Rayleigh damping (ξ at the highest mode near its limit), a contact
+    ///    interface or an absorbing boundary at the node;
+    ///
+    /// else a growth whose cause the state does not show.
     fn instability(&self, node: usize, what: &str) -> DcfmError {
-        let cause = if self.dt > self.model.critical_step_with_damping() {
-            format!(
-                "time step {:.3e} s above the critical step {:.3e} s (element {})",
-                self.dt,
-                self.model.critical_step_with_damping(),
-                self.model.stable.element
-            )
-        } else {
-            "an element inverted or a material update diverged near this node; \
-             reduce the time step or check the loads and the mesh there"
-                .to_string()
-        };
         DcfmError::Unstable {
             step: self.step,
             time: self.time,
             node,
             what: what.to_string(),
-            cause,
+            cause: self.instability_cause(node),
         }
+    }
+
+    fn instability_cause(&self, node: usize) -> String {
+        let model = &self.model;
+        let dt = self.dt;
+        let (alpha, beta) = model.max_damping();
+        // 1. Above a limit: walk the terms in the order they enter the limit.
+        let with_damping = model.critical_step_with_damping();
+        if dt > with_damping * (1.0 + 1e-9) {
+            let mut elements = model.stable.critical;
+            let anchors_w2 = model
+                .anchors
+                .as_ref()
+                .map_or(0.0, |a| a.omega_squared_bound(&model.mesh, &model.mass));
+            if anchors_w2 > 0.0 {
+                // model.stable.critical already holds the anchors (Weyl's bound).
+                let w2 = (2.0 / elements).powi(2) - anchors_w2;
+                if w2 > 0.0 {
+                    elements = 2.0 / w2.sqrt();
+                }
+            }
+            let limits = [
+                (
+                    elements,
+                    format!(
+                        "the elements' limit (element {}, length {:.3e} m, c_p {:.1} m/s)",
+                        model.stable.element, model.stable.length, model.stable.speed
+                    ),
+                ),
+                (
+                    model.stable.critical,
+                    "the anchor bars' stiffness".to_string(),
+                ),
+                (
+                    model.critical_step(),
+                    "the absorbing boundaries' springs or the free-field grids".to_string(),
+                ),
+                (
+                    with_damping,
+                    format!("Rayleigh damping (largest α = {alpha:.3e} 1/s, β = {beta:.3e} s)"),
+                ),
+            ];
+            let (limit, term) = limits
+                .iter()
+                .find(|(l, _)| dt > *l * (1.0 + 1e-9))
+                .expect("dt is above the last limit");
+            return format!(
+                "time step {dt:.4e} s above the stable step {limit:.4e} s set by {term} \
+                 (the step with every term: {with_damping:.4e} s); lower time.dt or time.safety"
+            );
+        }
+        // 2.–4. The elements around the node, in the last finite configuration.
+        let u_at = |i: usize| {
+            let n = self.u_next[i];
+            if n.iter().all(|x| x.is_finite()) {
+                n
+            } else {
+                self.u[i]
+            }
+        };
+        let mut worst_strain: Option<(usize, f64)> = None;
+        for (e, conn) in model.mesh.elements.iter().enumerate() {
+            if !conn.contains(&(node as u32)) {
+                continue;
+            }
+            let (g, le) = model.element_location[e];
+            let Some(group) = model.groups.get(g as usize) else {
+                continue;
+            };
+            if group.elements.get(le as usize) != Some(&(e as u32)) {
+                continue; // not active (excavated or not yet placed)
+            }
+            let x0 = model.mesh.element_coords(e);
+            let x: [[f64; 3]; 8] = std::array::from_fn(|a| {
+                let u = u_at(conn[a] as usize);
+                std::array::from_fn(|d| x0[a][d] + u[d])
+            });
+            for (k, xi) in crate::mesh::hex8_shape::NODE_XI.iter().enumerate() {
+                let dn = crate::mesh::hex8_shape::shape_derivatives(xi);
+                let (_, det) = crate::mesh::hex8_shape::jacobian(&x, &dn);
+                if det.is_nan() || det <= 0.0 {
+                    return format!(
+                        "element {e} (region '{}') inverted: its Jacobian at corner {k} is {det:.3e} \
+                         in the deformed configuration — the motion there is too large for the \
+                         mesh (refine it, check the loads, the supports and the contact there)",
+                        group.name
+                    );
+                }
+            }
+            let (eps, sig) = group.strain_stress_of(le as usize, &self.u);
+            let young = group.material.elastic().young;
+            let smax = sig.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            let emax = eps.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            if !(smax.is_finite() && emax.is_finite())
+                || (group.material.has_damage() && smax > 0.1 * young)
+            {
+                return format!(
+                    "the {} update of element {e} (region '{}') diverged (stress {smax:.3e} Pa \
+                     against E = {young:.3e} Pa): check the material's strengths and fracture \
+                     energies (units), or lower time.safety",
+                    if group.material.has_damage() {
+                        "plastic-damage"
+                    } else {
+                        "material"
+                    },
+                    group.name
+                );
+            }
+            if worst_strain.is_none_or(|(_, w)| emax > w) {
+                worst_strain = Some((e, emax));
+            }
+        }
+        if let Some((e, emax)) = worst_strain.filter(|&(_, w)| w > 0.1) {
+            return format!(
+                "strains of order one in element {e} (largest component {emax:.3e}): the \
+                 small-strain model is driven far outside its range there — check the loads, \
+                 the prescribed motions and the supports"
+            );
+        }
+        // 5. What else acts at the node.
+        let omega = 2.0 / model.critical_step();
+        let xi = 0.5 * (alpha / omega + beta * omega);
+        if xi > 0.5 {
+            return format!(
+                "heavy Rayleigh damping: ξ = {xi:.2} at the highest mode (α = {alpha:.3e} 1/s, \
+                 β = {beta:.3e} s) takes the step close to its limit; lower the damping or \
+                 time.safety"
+            );
+        }
+        if let Some((k, _, _)) = model
+            .contact
+            .as_ref()
+            .and_then(|c| c.locate_node(node as u32))
+        {
+            let name = model
+                .contact
+                .as_ref()
+                .map(|c| c.interface_names()[k].clone());
+            return format!(
+                "the node is on contact interface '{}': check that its surfaces face each \
+                 other and are not driven into each other by prescribed motions",
+                name.unwrap_or_default()
+            );
+        }
+        if self.boundary_slot.get(node).is_some_and(|&s| s != u32::MAX) {
+            return "the node is on an absorbing boundary: check its springs (distance, \
+                    alpha_n, alpha_t) and its material"
+                .to_string();
+        }
+        "a growth without a large strain, an inverted element or a step above a limit \
+         there; lower time.safety and check the loads and the mesh near this node"
+            .to_string()
     }
 
     /// Run `n` steps.

@@ -1,12 +1,14 @@
 //! Run outputs: everything a run writes under `results/<case>/` (see `docs/outputs.md`).
 //!
 //! One concept per file:
+//! - [`activity`]: which cells and points are active (excavation, placement);
 //! - [`atomic`]: temp file + fsync + rename, so a crash never leaves a half-written file;
 //! - [`vtu`]: ParaView meshes with point and cell fields (XML UnstructuredGrid, raw binary);
 //! - [`pvd`]: the time collection of the VTU files, rewritten after every step;
 //! - [`histories`]: CSV time histories, buffered, resumable;
 //! - [`summary`]: the end-of-run summary as pretty JSON.
 
+pub mod activity;
 pub mod atomic;
 pub mod histories;
 pub mod pvd;

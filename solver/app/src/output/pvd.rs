@@ -98,6 +98,12 @@ impl PvdCollection {
         self.write()
     }
 
+    /// Keep the steps for which `keep` holds and rewrite the file.
+    pub fn retain(&mut self, keep: impl FnMut(&PvdEntry) -> bool) -> Result<()> {
+        self.entries.retain(keep);
+        self.write()
+    }
+
     /// The steps, in time order.
     pub fn entries(&self) -> &[PvdEntry] {
         &self.entries

@@ -36,6 +36,8 @@ pub struct Case {
     pub end: f64,
     pub safety: f64,
     pub output: OutputSection,
+    /// The output probes resolved against the model, in the order of their columns.
+    pub probes: crate::case::probes::Probes,
     /// The case's ground motions by name (`[motions.NAME]`), for the seismic input.
     pub motions: crate::motion::Motions,
     /// The static stage (`[static]`), run before the dynamic stage.
@@ -96,7 +98,7 @@ fn build(
     loads::build_damping(&mut model, &file.damping, &file.regions, label)?;
     loads::build_initial(&mut model, &file.initial, label)?;
     boundary::build_absorbing(&mut model, &file, &materials, label)?;
-    output::check_output(&model, &file.output, label)?;
+    let probes = output::build_output(&model, &file.output, label)?;
     let static_plan =
         static_stage::build_static(&model, file.static_stage.as_ref(), &file.output, label)?;
     let dt = model
@@ -110,6 +112,7 @@ fn build(
         end: file.time.end,
         safety: file.time.safety,
         output: file.output,
+        probes,
         motions,
         static_plan,
     })

@@ -1,0 +1,237 @@
+//! What a run leaves in its output folder when it is rerun or resumed: the peaks of the
+//! whole run, exactly the VTU frames its collection lists, no temporary files of killed
+//! writes.
+
+use std::collections::BTreeSet;
+use std::path::{Path, PathBuf};
+
+use dcfm::case::parse_case;
+use dcfm_app::output::PvdCollection;
+use dcfm_app::run::{run_case, RunOptions, RunSummary};
+
+/// A block fixed at its base whose top starts at 1 m/s and whose motion dies out under
+/// mass-proportional damping: its peaks come early, before the checkpoints a run resumes
+/// from.
+const DECAYING: &str = r#"
+title = "decaying"
+[time]
+end = 0.004
+[output]
+vtu_every = 5
+checkpoint_every = 4
+[mesh]
+[[mesh.blocks]]
+name = "b"
+origin = [0.0, 0.0, 0.0]
+size = [2.0, 2.0, 2.0]
+divisions = [2, 2, 2]
+[materials.rock]
+model = "elastic"
+young = 20e9
+poisson = 0.25
+density = 2700.0
+[[regions]]
+name = "b"
+material = "rock"
+[[boundary.fixed]]
+set = "b.zmin"
+dofs = "xyz"
+[[initial.velocity]]
+set = "b.zmax"
+value = [1.0, 0.0, 0.0]
+[damping]
+alpha = 1000.0
+"#;
+
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("dcfm-folder-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    d
+}
+
+fn run(text: &str, out: &Path, resume: bool) -> RunSummary {
+    run_case(
+        parse_case(text, "decaying.toml", Path::new(".")).unwrap(),
+        &RunOptions {
+            out: out.to_path_buf(),
+            resume,
+            progress: false,
+        },
+    )
+    .unwrap()
+}
+
+/// Run to a shorter end, then resume to the full end. The short run ends at step 8
+/// (Δt = 2.19e-4 s): a checkpoint, and a last frame that the full run's schedule (every
+/// 5 steps) does not have.
+fn interrupted(out: &Path) -> RunSummary {
+    run(&DECAYING.replace("end = 0.004", "end = 0.0016"), out, false);
+    run(DECAYING, out, true)
+}
+
+/// (listed frames, mesh_*.vtu files in the folder).
+fn frames(out: &Path) -> (Vec<String>, BTreeSet<String>) {
+    let listed = PvdCollection::load(&out.join("case.pvd"))
+        .unwrap()
+        .entries()
+        .iter()
+        .map(|e| e.file.clone())
+        .collect();
+    let files = std::fs::read_dir(out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.starts_with("mesh_") && n.ends_with(".vtu"))
+        .collect();
+    (listed, files)
+}
+
+#[test]
+fn peaks_of_a_resumed_run_are_those_of_the_whole_run() {
+    let root = dir("peaks");
+    let full = run(DECAYING, &root.join("full"), false);
+    let resumed = interrupted(&root.join("part"));
+    let restart = resumed.resumed_from_step.expect("resumed") as f64 * resumed.dt;
+    // The test means something only when the peaks come before the restart.
+    assert!(full.peak_velocity.time < restart && full.peak_displacement.time < restart);
+    for (a, b) in [
+        (full.peak_velocity, resumed.peak_velocity),
+        (full.peak_displacement, resumed.peak_displacement),
+    ] {
+        assert_eq!(a.value.to_bits(), b.value.to_bits(), "{a:?} against {b:?}");
+        assert_eq!((a.node, a.time.to_bits()), (b.node, b.time.to_bits()));
+    }
+    let _ = std::fs::remove_dir_all(&root);
+}
+
+#[test]
+fn a_resumed_run_lists_exactly_the_frames_of_an_uninterrupted_run() {
+    let root = dir("resume-frames");
+    run(DECAYING, &root.join("full"), false);
+    interrupted(&root.join("part"));
+    let (full_listed, full_files) = frames(&root.join("full"));
+    let (part_listed, part_files) = frames(&root.join("part"));
+    assert!(!full_listed.contains(&"mesh_000008.vtu".to_string()));
+    assert_eq!(full_listed, part_listed);
+    assert_eq!(full_files, part_files);
+    assert_eq!(full_files, full_listed.iter().cloned().collect());
+    let _ = std::fs::remove_dir_all(&root);
+}
+
+#[test]
+fn a_rerun_in_a_used_folder_leaves_only_its_own_frames() {
+    let root = dir("rerun");
+    let out = root.join("out");
+    // An earlier, longer run with frames at other steps, and a write killed midway.
+    run(
+        &DECAYING
+            .replace("end = 0.004", "end = 0.006")
+            .replace("vtu_every = 5", "vtu_every = 3"),
+        &out,
+        false,
+    );
+    let killed = out.join(".case.pvd.4000000.7.tmp");
+    std::fs::write(&killed, b"half").unwrap();
+    run(DECAYING, &out, false);
+    let (listed, files) = frames(&out);
+    assert_eq!(files, listed.iter().cloned().collect(), "{files:?}");
+    assert!(listed.contains(&"mesh_000005.vtu".to_string()));
+    assert!(!listed.contains(&"mesh_000003.vtu".to_string()));
+    assert!(!killed.exists(), "temporary file of a killed write kept");
+    let _ = std::fs::remove_dir_all(&root);
+}
+
+/// The block pulled up at its top with a bar that yields at once (f_y A = 314 N) and a
+/// bond–slip bar: a resumed run must carry the bars' plastic strains and bar-node motion.
+const ANCHORED: &str = r#"
+title = "anchored"
+[time]
+end = 0.002
+[output]
+vtu_every = 0
+checkpoint_every = 4
+[mesh]
+[[mesh.blocks]]
+name = "b"
+origin = [0.0, 0.0, 0.0]
+size = [2.0, 2.0, 2.0]
+divisions = [2, 2, 2]
+[materials.rock]
+model = "elastic"
+young = 20e9
+poisson = 0.25
+density = 2700.0
+[[regions]]
+name = "b"
+material = "rock"
+[[boundary.fixed]]
+set = "b.zmin"
+dofs = "xyz"
+[[loads.nodal]]
+set = "b.zmax"
+force = [2e5, 0.0, 1e6]
+history = { type = "ramp", rate = 1000.0 }
+[[anchors.bars]]
+name = "soft"
+start = [0.5, 0.5, 0.1]
+end = [0.5, 0.5, 1.9]
+diameter = 0.02
+yield_stress = 1e6
+[[anchors.bars]]
+name = "slip"
+start = [1.5, 1.5, 0.1]
+end = [1.5, 1.5, 1.9]
+diameter = 0.02
+yield_stress = 1e6
+bond_stiffness = 1e7
+segment_length = 0.3
+"#;
+
+#[test]
+fn a_resumed_run_with_yielding_anchors_matches_an_uninterrupted_run() {
+    let root = dir("anchors");
+    let go = |text: &str, out: &Path, resume: bool| {
+        run_case(
+            parse_case(text, "anchored.toml", Path::new(".")).unwrap(),
+            &RunOptions {
+                out: out.to_path_buf(),
+                resume,
+                progress: false,
+            },
+        )
+        .unwrap()
+    };
+    let full = go(ANCHORED, &root.join("full"), false);
+    go(
+        &ANCHORED.replace("end = 0.002", "end = 0.0011"),
+        &root.join("part"),
+        false,
+    );
+    let resumed = go(ANCHORED, &root.join("part"), true);
+    assert!(resumed.resumed_from_step.is_some_and(|s| s > 0));
+    let a = std::fs::read_to_string(root.join("full/histories.csv")).unwrap();
+    let b = std::fs::read_to_string(root.join("part/histories.csv")).unwrap();
+    let header: Vec<&str> = a.lines().next().unwrap().split(',').collect();
+    let last: Vec<f64> = a
+        .lines()
+        .last()
+        .unwrap()
+        .split(',')
+        .map(|x| x.parse().unwrap())
+        .collect();
+    for g in ["soft", "slip"] {
+        let k = header
+            .iter()
+            .position(|h| *h == format!("anchor_{g}_yielded_segments"))
+            .unwrap_or_else(|| panic!("no anchor columns for {g}: {header:?}"));
+        assert!(
+            last[k] > 0.0,
+            "bar {g} never yields: the test would prove nothing"
+        );
+    }
+    assert_eq!(a, b, "histories differ after a resume with anchors");
+    assert_eq!(
+        full.energies.internal.to_bits(),
+        resumed.energies.internal.to_bits()
+    );
+    let _ = std::fs::remove_dir_all(&root);
+}

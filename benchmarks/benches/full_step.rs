@@ -4,8 +4,8 @@
 //!
 //! `internal_forces/cube20_full_{lanes,scalar}`: the element-force phase alone
 //! (`Simulation::internal_forces`) of the fully integrated elastic 20³ cube, with the
-//! elastic kernel in SIMD lanes (`hex8_full_lanes`, the default) and with the scalar
-//! reference kernel (`ElementGroup::lanes = false`); both give the same forces bit for bit.
+//! elastic kernel in SIMD lanes (`hex8_full_lanes`, `ElementGroup::lanes = true`) and with
+//! the scalar kernel (the default); both give the same forces bit for bit.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use dcfm::element::Integration;

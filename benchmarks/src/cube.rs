@@ -156,7 +156,7 @@ impl CubeSpec {
             integration: self.integration,
             hourglass: self.hourglass,
         };
-        let mut model = Model::new(mesh, &[setup.clone()], "benchmark cube")?;
+        let mut model = Model::new(mesh, std::slice::from_ref(&setup), "benchmark cube")?;
         if self.boundaries {
             Self::add_boundaries(&mut model, &setup.material)?;
         } else {

@@ -65,7 +65,10 @@ pub struct ElementGroup {
     pub reference: Option<Vec<[[f64; 3]; 8]>>,
     /// Compute the internal forces of linear elastic fully integrated elements in SIMD
     /// lanes of [`LANES`] elements ([`hex8_full_lanes`], bit-identical to the scalar
-    /// kernel); `false` runs the scalar reference kernel for every element.
+    /// kernel); `false` (the default) runs the scalar kernel for every element. Off by
+    /// default because the lane kernel as written is slower than the scalar one (about
+    /// 15 % more CPU time on the 20³ cube: its lane values spill to the stack,
+    /// docs/benchmarks.md, issue 11).
     pub lanes: bool,
 }
 
@@ -174,7 +177,7 @@ impl ElementGroup {
             states,
             initial_strain: None,
             reference: None,
-            lanes: true,
+            lanes: false,
         })
     }
 

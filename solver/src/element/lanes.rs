@@ -11,8 +11,7 @@
 
 use std::ops::{Add, Mul, Neg, Sub};
 
-/// Elements per lane block. 8 × f64: one AVX-512 register, two AVX2 registers; measured
-/// against 4 on the 40³ benchmark cubes (docs/benchmarks.md).
+/// Elements per lane block. 8 × f64: one AVX-512 register, two AVX2 registers.
 pub const LANES: usize = 8;
 
 /// One `f64` per lane.

@@ -57,6 +57,10 @@ pub struct CubeSpec {
     /// Instead of a cube: a slab of divisions × divisions × 4 elements split at mid-height
     /// into two regions joined by a bonded DCFM interface of (divisions + 1)² node pairs.
     pub interface: bool,
+    /// Instead of the fixed base: a viscous-spring absorbing base through which a seismic
+    /// input enters and free-field walls on the four sides (issue #7: the boundaries'
+    /// cost per step).
+    pub boundaries: bool,
 }
 
 impl CubeSpec {
@@ -70,7 +74,14 @@ impl CubeSpec {
             velocity: [0.1, 0.05, -0.02],
             material: CubeMaterial::Elastic,
             interface: false,
+            boundaries: false,
         }
+    }
+
+    /// The same cube on seismic boundaries (see [`CubeSpec::boundaries`]).
+    pub fn with_boundaries(mut self) -> Self {
+        self.boundaries = true;
+        self
     }
 
     /// The interface slab of `divisions`² × 4 elements (see [`CubeSpec::interface`]).
@@ -110,22 +121,26 @@ impl CubeSpec {
             );
         }
         format!(
-            "cube{}_{}{}",
+            "cube{}_{}{}{}",
             self.divisions,
             self.integration.name(),
-            self.material.suffix()
+            self.material.suffix(),
+            if self.boundaries { "_boundaries" } else { "" }
         )
     }
 
     /// Build the model: rock (E 20 GPa, ν 0.25, ρ 2700 kg/m³), base face `rock.zmin`
-    /// fixed in x, y and z, initial velocity on all nodes (zeroed on the base).
+    /// fixed in x, y and z, initial velocity on all nodes (zeroed on the base). With
+    /// [`CubeSpec::boundaries`] the base is free and the boundaries of
+    /// [`CubeSpec::add_boundaries`] hold the cube instead.
     pub fn model(&self) -> dcfm::Result<Model> {
         if self.interface {
             return self.slab_model();
         }
         let n = self.divisions;
-        let mesh = BoxMeshSpec::single(REGION, [0.0; 3], [self.edge; 3], [n, n, n])
+        let mut mesh = BoxMeshSpec::single(REGION, [0.0; 3], [self.edge; 3], [n, n, n])
             .build("benchmark cube")?;
+        dcfm::mesh::outer_faces::add_bounding_box_face_sets(&mut mesh);
         let elastic = Elastic::new(REGION, 20e9, 0.25, 2700.0)?;
         let material = match self.material {
             CubeMaterial::Elastic => Material::Elastic(elastic),
@@ -141,12 +156,68 @@ impl CubeSpec {
             integration: self.integration,
             hourglass: self.hourglass,
         };
-        let mut model = Model::new(mesh, &[setup], "benchmark cube")?;
-        let base = model.mesh.node_sets[&format!("{REGION}.zmin")].clone();
-        model.constraints.fix(&base, 0b111);
+        let mut model = Model::new(mesh, std::slice::from_ref(&setup), "benchmark cube")?;
+        if self.boundaries {
+            Self::add_boundaries(&mut model, &setup.material)?;
+        } else {
+            let base = model.mesh.node_sets[&format!("{REGION}.zmin")].clone();
+            model.constraints.fix(&base, 0b111);
+        }
         let all: Vec<u32> = (0..model.mesh.n_nodes() as u32).collect();
         model.initial_velocity.push((all, self.velocity));
         Ok(model)
+    }
+
+    /// The boundaries of `cases/seismic_rock_box.toml` on the cube: a viscous-spring base
+    /// (`outer.zmin`, α_N 1.33, α_T 0.67) through which an outcrop acceleration of
+    /// 1 m/s² at 2 Hz along x enters, and free-field walls with their 1D columns on
+    /// `outer.xmin`, `outer.xmax`, `outer.ymin`, `outer.ymax`.
+    fn add_boundaries(model: &mut Model, material: &Material) -> dcfm::Result<()> {
+        use dcfm::boundary::absorbing::SetNames;
+        use dcfm::boundary::free_field::FreeFieldSection;
+        use dcfm::boundary::seismic_input::{MotionDefinition, SeismicSection};
+        use dcfm::boundary::MotionKind;
+        use dcfm::boundary::{AbsorbingKind, AbsorbingSpec, BoundaryInputs, BoundarySystem};
+        use dcfm::load::TimeFunction;
+        let absorbing = [AbsorbingSpec {
+            set: SetNames::One("outer.zmin".to_string()),
+            kind: AbsorbingKind::ViscousSpring,
+            material: None,
+            alpha_n: 1.33,
+            alpha_t: 0.67,
+            distance: None,
+            source: None,
+            input: true,
+        }];
+        let free_field = FreeFieldSection {
+            sides: ["xmin", "xmax", "ymin", "ymax"]
+                .iter()
+                .map(|s| SetNames::One(format!("outer.{s}")))
+                .collect(),
+            top: None,
+        };
+        let seismic = SeismicSection {
+            x: Some(TimeFunction::Sine {
+                amplitude: 1.0,
+                frequency: 2.0,
+                phase: 0.0,
+            }),
+            y: None,
+            z: None,
+            quantity: MotionKind::Acceleration,
+            definition: MotionDefinition::Outcrop,
+            profile_at: None,
+            overburden: Vec::new(),
+        };
+        let materials = std::collections::BTreeMap::from([(REGION.to_string(), material.clone())]);
+        let inputs = BoundaryInputs {
+            absorbing: &absorbing,
+            free_field: Some(&free_field),
+            seismic: Some(&seismic),
+            materials: &materials,
+        };
+        model.boundaries = BoundarySystem::build(model, &inputs, "benchmark cube")?;
+        Ok(())
     }
 
     /// The interface slab: lower block `rock`, upper block `lining`, split between them,
@@ -202,10 +273,11 @@ impl CubeSpec {
         Ok(model)
     }
 
-    /// The model in motion with dt = [`SAFETY`] × the critical step.
+    /// The model in motion with dt = [`SAFETY`] × the critical step (boundary springs
+    /// and the free-field columns included).
     pub fn simulation(&self) -> dcfm::Result<Simulation> {
         let model = self.model()?;
-        let dt = SAFETY * model.stable.critical;
+        let dt = model.time_step(None, SAFETY)?;
         Simulation::new(model, dt, SAFETY)
     }
 }

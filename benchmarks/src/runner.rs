@@ -22,6 +22,10 @@ pub struct RunConfig {
     pub integrations: Vec<Integration>,
     /// Plastic-damage regimes, run with full integration at every size (issue #4).
     pub plastic_damage: Vec<CubeMaterial>,
+    /// Time every size's fully integrated elastic cube also on seismic boundaries
+    /// (`cube{n}_full_boundaries`: absorbing base with input, free-field sides), right
+    /// after the fixed-base cube, for the boundaries' overhead per step (issue #7).
+    pub boundaries: bool,
     /// Interface slabs (n² × 4 elements, (n+1)² DCFM pairs) whose contact phase is reported
     /// as a share of the step (issue #3); run after the cubes.
     pub interface_sizes: Vec<usize>,
@@ -54,6 +58,7 @@ impl RunConfig {
         Self {
             sizes: vec![20, 40],
             integrations: vec![Integration::OnePoint, Integration::Full],
+            boundaries: true,
             interface_sizes: vec![100],
             plastic_damage: vec![
                 CubeMaterial::PlasticDamageElastic,
@@ -102,7 +107,13 @@ impl RunConfig {
     pub fn cases(&self) -> Vec<CubeSpec> {
         let mut out = Vec::new();
         for &n in &self.sizes {
-            let elastic = self.integrations.iter().map(|&i| CubeSpec::new(n, i));
+            let boundaries = (self.boundaries && self.integrations.contains(&Integration::Full))
+                .then(|| CubeSpec::new(n, Integration::Full).with_boundaries());
+            let elastic = self
+                .integrations
+                .iter()
+                .map(|&i| CubeSpec::new(n, i))
+                .chain(boundaries);
             let damage = self
                 .plastic_damage
                 .iter()

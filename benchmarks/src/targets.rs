@@ -1,4 +1,5 @@
-//! The throughput targets of issues #2, #3, #4 and #7, checked against a set of records.
+//! The throughput targets of issues #2, #3, #4 and #7, checked against a set of records,
+//! and the boundaries' overhead per step (issue #7).
 
 use crate::record::ThroughputRecord;
 use crate::speedup::speedups;
@@ -20,6 +21,44 @@ pub const SPEEDUP_MIN_ELEMENTS: usize = 8000;
 pub const MAX_BYTES_PER_ELEMENT: f64 = 2048.0;
 /// The static sparse Cholesky of a 40³ cube (≈ 2e5 DOFs), whole static stage (issue #7).
 pub const STATIC_CHOLESKY_40_SECONDS: f64 = 30.0;
+
+/// Largest extra time per step of the 40³ cube on seismic boundaries (absorbing base with
+/// input, free-field sides) over the fixed-base cube (issue #7).
+pub const MAX_BOUNDARY_OVERHEAD: f64 = 0.10;
+
+/// The boundaries' cost of one size and thread count: `cube{n}_full_boundaries` against
+/// `cube{n}_full` timed just before it.
+#[derive(Clone, Debug, PartialEq)]
+pub struct BoundaryOverhead {
+    /// The boundary case, e.g. `cube40_full_boundaries`.
+    pub case: String,
+    pub threads: usize,
+    /// Extra wall time per step over the fixed-base cube, as a fraction of its step.
+    pub overhead: f64,
+    /// Whether either timing was starved by other processes.
+    pub machine_busy: bool,
+}
+
+/// Every boundary case paired with its fixed-base cube on the same thread count.
+pub fn boundary_overheads(records: &[ThroughputRecord]) -> Vec<BoundaryOverhead> {
+    let mut out = Vec::new();
+    for r in records.iter().filter(|r| r.case.ends_with("_boundaries")) {
+        let base_case = r.case.trim_end_matches("_boundaries");
+        if let Some(b) = records
+            .iter()
+            .rev()
+            .find(|b| b.case == base_case && b.threads == r.threads)
+        {
+            out.push(BoundaryOverhead {
+                case: r.case.clone(),
+                threads: r.threads,
+                overhead: b.steps_per_s / r.steps_per_s.max(1e-300) - 1.0,
+                machine_busy: starved(r) || starved(b),
+            });
+        }
+    }
+    out
+}
 
 /// A target and how the records fare against it.
 #[derive(Clone, Debug, PartialEq)]
@@ -80,6 +119,22 @@ pub fn check(records: &[ThroughputRecord]) -> Vec<TargetCheck> {
                 machine_busy: busy,
             });
         }
+    }
+    for o in boundary_overheads(records)
+        .into_iter()
+        .filter(|o| o.case == "cube40_full_boundaries")
+    {
+        out.push(TargetCheck {
+            target: format!(
+                "{}, {} thread(s): boundaries add <= {:.0}% per step",
+                o.case,
+                o.threads,
+                100.0 * MAX_BOUNDARY_OVERHEAD
+            ),
+            value: o.overhead,
+            met: o.overhead <= MAX_BOUNDARY_OVERHEAD,
+            machine_busy: o.machine_busy,
+        });
     }
     for r in records.iter().filter(|r| r.contact_share.is_some()) {
         let share = r.contact_share.unwrap_or(0.0);

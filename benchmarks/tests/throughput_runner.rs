@@ -25,6 +25,7 @@ fn tiny(history: Option<PathBuf>) -> RunConfig {
         max_steps: 8,
         history,
         plastic_damage: Vec::new(),
+        boundaries: false,
         interface_sizes: Vec::new(),
         static_sizes: Vec::new(),
         ..RunConfig::quick()
@@ -215,4 +216,27 @@ fn static_row_reports_the_three_phases_and_the_sizes() {
             "{key} missing in {line}"
         );
     }
+}
+
+#[test]
+fn boundary_row_follows_the_fixed_base_cube_and_gives_the_overhead() {
+    let config = RunConfig {
+        integrations: vec![Integration::Full],
+        boundaries: true,
+        threads: vec![1],
+        ..tiny(None)
+    };
+    let records = run(&config, |_| {}).expect("boundary run");
+    let names: Vec<&str> = records.iter().map(|r| r.case.as_str()).collect();
+    assert_eq!(names, ["cube3_full", "cube3_full_boundaries"]);
+    // The springs of the base shorten the critical step a little, never lengthen it.
+    assert!(records[1].dt_s <= records[0].dt_s && records[1].dt_s > 0.5 * records[0].dt_s);
+    let o = targets::boundary_overheads(&records);
+    assert_eq!(o.len(), 1);
+    assert_eq!(o[0].case, "cube3_full_boundaries");
+    assert!(o[0].overhead.is_finite() && o[0].overhead > -1.0);
+    // The target names the 40³ cube only.
+    assert!(!targets::check(&records)
+        .iter()
+        .any(|c| c.target.contains("boundaries add")));
 }

@@ -131,6 +131,23 @@ fn main() -> ExitCode {
             );
         }
     }
+    let overheads = targets::boundary_overheads(&records);
+    if !overheads.is_empty() {
+        eprintln!("\nboundaries (absorbing base with input + free-field sides) per step:");
+        for o in &overheads {
+            eprintln!(
+                "  {:<24} {} thread(s): {:+.1}% over the fixed base{}",
+                o.case,
+                o.threads,
+                100.0 * o.overhead,
+                if o.machine_busy {
+                    " (machine busy)"
+                } else {
+                    ""
+                }
+            );
+        }
+    }
     let checks = targets::check(&records);
     if !checks.is_empty() {
         eprintln!("\ntargets (issues #2, #3, #4, #7):");

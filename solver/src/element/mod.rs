@@ -1,6 +1,6 @@
 //! Hex8 element: shape functions, precomputed geometry, internal-force kernels
-//! (one-point with Flanagan–Belytschko hourglass control, full 2×2×2), lumped mass and
-//! the stable time step.
+//! (one-point with Flanagan–Belytschko hourglass control, full 2×2×2; the elastic full
+//! kernel also in SIMD lanes, `hex8_full_lanes`), lumped mass and the stable time step.
 
 pub mod anchor_bar;
 pub mod anchor_pattern;
@@ -8,8 +8,10 @@ pub mod colouring;
 pub mod fields;
 pub mod groups;
 pub mod hex8_full;
+pub mod hex8_full_lanes;
 pub mod hex8_uniform;
 pub mod host_locate;
+pub mod lanes;
 pub mod lumped_mass;
 pub mod stable_step;
 pub mod stiffness;

@@ -1,0 +1,138 @@
+//! SIMD lanes for the element kernels (issue 11): [`LANES`] elements are processed
+//! together, each `f64` of the scalar kernel becoming an [`F64s`] — one value per element.
+//!
+//! The lane type is a plain array with element-wise operators. Inside
+//! [`dispatch`] (pulp's runtime dispatch: the closure is compiled once per instruction
+//! set — AVX2 + FMA (x86-64-v3), or the baseline — and the best one the CPU offers is
+//! chosen at run time), every operator on [`F64s`] compiles to vector instructions. Each
+//! lane performs exactly the IEEE operations of the scalar kernel in the same order (Rust
+//! never contracts a multiply and an add into an FMA by itself), so the lane kernels give
+//! the scalar kernels' results bit for bit; the tests compare them on random elements.
+
+use std::ops::{Add, Mul, Neg, Sub};
+
+/// Elements per lane block. 8 × f64: one AVX-512 register, two AVX2 registers.
+pub const LANES: usize = 8;
+
+/// One `f64` per lane.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[repr(C, align(64))]
+pub struct F64s(pub [f64; LANES]);
+
+impl F64s {
+    /// Every lane 0.0.
+    pub const ZERO: F64s = F64s([0.0; LANES]);
+
+    /// Every lane `x`.
+    #[inline(always)]
+    pub fn splat(x: f64) -> Self {
+        F64s([x; LANES])
+    }
+}
+
+macro_rules! lane_op {
+    ($tr:ident, $f:ident, $op:tt) => {
+        impl $tr for F64s {
+            type Output = F64s;
+            #[inline(always)]
+            fn $f(self, rhs: F64s) -> F64s {
+                let mut out = [0.0; LANES];
+                for l in 0..LANES {
+                    out[l] = self.0[l] $op rhs.0[l];
+                }
+                F64s(out)
+            }
+        }
+    };
+}
+lane_op!(Add, add, +);
+lane_op!(Sub, sub, -);
+lane_op!(Mul, mul, *);
+
+impl Mul<F64s> for f64 {
+    type Output = F64s;
+    #[inline(always)]
+    fn mul(self, rhs: F64s) -> F64s {
+        F64s::splat(self) * rhs
+    }
+}
+
+impl Neg for F64s {
+    type Output = F64s;
+    #[inline(always)]
+    fn neg(self) -> F64s {
+        let mut out = [0.0; LANES];
+        for l in 0..LANES {
+            out[l] = -self.0[l];
+        }
+        F64s(out)
+    }
+}
+
+/// Nodal vectors of a lane block: `[node][component]`, one value per element.
+pub type NodalLanes = [[F64s; 3]; 8];
+
+/// Voigt vector per lane.
+pub type VoigtLanes = [F64s; 6];
+
+/// Run `f` with the best instruction set of the CPU (pulp's runtime dispatch). Everything
+/// `f` inlines (the lane operators and kernels are `#[inline(always)]`) is compiled for
+/// that instruction set.
+#[inline(always)]
+pub fn dispatch<R>(f: impl FnOnce() -> R) -> R {
+    pulp::Arch::new().dispatch(f)
+}
+
+/// Gather the nodal values `x[conn[a]]` of the elements of one lane block.
+#[inline(always)]
+pub fn gather(x: &[[f64; 3]], conn: &[[u32; 8]; LANES]) -> NodalLanes {
+    let mut out = [[F64s::ZERO; 3]; 8];
+    for (l, nodes) in conn.iter().enumerate() {
+        for a in 0..8 {
+            let v = &x[nodes[a] as usize];
+            out[a][0].0[l] = v[0];
+            out[a][1].0[l] = v[1];
+            out[a][2].0[l] = v[2];
+        }
+    }
+    out
+}
+
+/// The values of lane `l`.
+#[inline(always)]
+pub fn lane_of(x: &NodalLanes, l: usize) -> [[f64; 3]; 8] {
+    std::array::from_fn(|a| [x[a][0].0[l], x[a][1].0[l], x[a][2].0[l]])
+}
+
+/// Isotropic elastic stress σ = λ tr ε I + 2μ ε (engineering shear), lane-wise, with the
+/// operations of `Elastic::stress`.
+#[inline(always)]
+pub fn elastic_stress(lambda: f64, mu: f64, e: &VoigtLanes) -> VoigtLanes {
+    let tr = e[0] + e[1] + e[2];
+    let l = lambda * tr;
+    let m2 = 2.0 * mu;
+    [
+        l + m2 * e[0],
+        l + m2 * e[1],
+        l + m2 * e[2],
+        mu * e[3],
+        mu * e[4],
+        mu * e[5],
+    ]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn operators_are_lane_wise_and_aligned() {
+        let a = F64s(std::array::from_fn(|l| l as f64 + 0.5));
+        let b = F64s::splat(2.0);
+        assert_eq!((a * b + a - b).0[3], 3.5 * 2.0 + 3.5 - 2.0);
+        assert_eq!((-a).0[7], -7.5);
+        assert_eq!(std::mem::align_of::<F64s>(), 64);
+        assert_eq!(std::mem::size_of::<F64s>(), 8 * LANES);
+        assert_eq!(dispatch(|| (a * a).0[2]), 2.5 * 2.5);
+    }
+}

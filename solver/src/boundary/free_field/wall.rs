@@ -16,10 +16,15 @@
 //! walls, as the walls are that of the main grid); its top is the ground surface.
 
 use nalgebra::{Matrix3, Vector3};
+use rayon::prelude::*;
 
 use crate::boundary::centred_dashpot::CentredDashpotNode;
 use crate::boundary::free_field::column::Column;
 use crate::material::{Elastic, Voigt};
+
+/// Smallest number of wall elements one parallel task takes (below it the split costs
+/// more than it saves).
+const ELEMENTS_PER_TASK: usize = 256;
 
 /// One Gauss point of a wall element.
 #[derive(Clone, Copy, Debug)]
@@ -99,6 +104,10 @@ pub struct Wall {
     f_int: Vec<[f64; 3]>,
     f_damp: Vec<[f64; 3]>,
     source: Vec<[f64; 3]>,
+    /// Per-element internal and (β-scaled) damping forces of the step, computed in
+    /// parallel and then added to the nodes in element order (thread-count independent).
+    element_force: Vec<[[f64; 3]; 4]>,
+    element_damping: Vec<[[f64; 3]; 4]>,
 }
 
 /// Strain (Voigt, engineering shear) from displacement gradients ∂u_i/∂x_j.
@@ -230,6 +239,8 @@ impl Wall {
             f_int: vec![[0.0; 3]; n],
             f_damp: vec![[0.0; 3]; n],
             source: vec![[0.0; 3]; n],
+            element_force: vec![[[0.0; 3]; 4]; ne],
+            element_damping: vec![[[0.0; 3]; 4]; ne],
         }
     }
 
@@ -331,25 +342,39 @@ impl Wall {
         {
             *f = [0.0; 3];
         }
+        // Element forces in parallel (each element writes only its own slots) …
+        let (u, v) = (&self.u, &self.v);
+        self.element_force
+            .par_iter_mut()
+            .zip(self.element_damping.par_iter_mut())
+            .zip(self.stress.par_iter_mut())
+            .zip(self.elements.par_iter())
+            .zip(self.points.par_iter())
+            .zip(self.materials.par_iter())
+            .zip(self.damping.par_iter())
+            .with_min_len(ELEMENTS_PER_TASK)
+            .for_each(|((((((fe, fd), s), conn), pts), m), &(_, beta))| {
+                let ue: [[f64; 3]; 4] = std::array::from_fn(|k| u[conn[k] as usize]);
+                *fe = element_forces_with_stress(pts, m, &ue, s);
+                if beta > 0.0 {
+                    let ve: [[f64; 3]; 4] = std::array::from_fn(|k| v[conn[k] as usize]);
+                    let f = element_forces(pts, m, &ve);
+                    *fd = f.map(|fk| fk.map(|x| beta * x));
+                }
+            });
+        // … added to the nodes serially in element order: the same sums on any thread count.
         for (e, conn) in self.elements.iter().enumerate() {
-            let ue: [[f64; 3]; 4] = std::array::from_fn(|k| self.u[conn[k] as usize]);
-            let m = &self.materials[e];
-            let pts = &self.points[e];
-            let mut s_out = [[0.0; 6]; 4];
-            let fe = element_forces_with_stress(pts, m, &ue, &mut s_out);
-            self.stress[e] = s_out;
+            let fe = &self.element_force[e];
             for k in 0..4 {
                 for d in 0..3 {
                     self.f_int[conn[k] as usize][d] += fe[k][d];
                 }
             }
-            let beta = self.damping[e].1;
-            if beta > 0.0 {
-                let ve: [[f64; 3]; 4] = std::array::from_fn(|k| self.v[conn[k] as usize]);
-                let fd = element_forces(pts, m, &ve);
+            if self.damping[e].1 > 0.0 {
+                let fd = &self.element_damping[e];
                 for k in 0..4 {
                     for d in 0..3 {
-                        self.f_damp[conn[k] as usize][d] += beta * fd[k][d];
+                        self.f_damp[conn[k] as usize][d] += fd[k][d];
                     }
                 }
             }

@@ -122,6 +122,7 @@ class Inputs:
     cross_rows: list[dict[str, Any]] = field(default_factory=list)
     cross_series: list[dict[str, Any]] = field(default_factory=list)
     cross_commit: str | None = None
+    cross_descriptions: dict[str, str] = field(default_factory=dict)
     performance: list[dict[str, Any]] = field(default_factory=list)
     history: list[dict[str, Any]] = field(default_factory=list)
     yingxiuwan: dict[str, Any] | None = None
@@ -165,6 +166,10 @@ def read_inputs(root: Path) -> Inputs:
         inp.cross_rows = [_check_row(cross, i, r, keys) for i, r in enumerate(c["rows"])]
         inp.cross_series = [_check_series(cross, i, x, "curves") for i, x in enumerate(c.get("series", []))]
         inp.cross_commit = c.get("commit")
+        desc = c.get("descriptions", {})
+        if not isinstance(desc, dict) or not all(isinstance(k, str) and isinstance(v, str) for k, v in desc.items()):
+            raise ReportError(f"{cross}: 'descriptions' must map case titles to texts")
+        inp.cross_descriptions = desc
     else:
         inp.missing.append(str(cross.relative_to(root)))
 
@@ -531,6 +536,9 @@ def build(inp: Inputs) -> tuple[str, str, list[str]]:
         peers = sorted({r["peer"] for r in rows})
         rep.h(f'<article id="{anchor("x-" + cc)}"><h3>{esc(cc)}</h3><p>Peer: {esc(", ".join(peers))}</p>')
         rep.m(f"### {cc}\n\nPeer: {', '.join(peers)}\n")
+        if cc in inp.cross_descriptions:
+            rep.h(f'<p class="desc">{esc(inp.cross_descriptions[cc])}</p>')
+            rep.m(f"{inp.cross_descriptions[cc]}\n")
         row_table(rep, rows, peer=True)
         plots = [s for s in inp.cross_series if s["case"] == cc]
         if plots:

@@ -1,6 +1,7 @@
 //! Contact kernels: the point-to-point pair update (per pair, kernel and through
 //! `ContactSystem::compute` on a 100 × 100-face interface) and the point-to-surface solve
-//! (per coupled group, and through `compute` on a block sliding over a larger base).
+//! (per coupled group, and through `compute` on a block sliding over a larger base); the
+//! setup of large interfaces (`ContactSystem::new`).
 
 use std::hint::black_box;
 
@@ -168,5 +169,50 @@ fn point_to_surface(c: &mut Criterion) {
     run_compute(c, "point-to-surface 441 nodes", &m, &spec, n_on);
 }
 
-criterion_group!(benches, pair_kernel, point_to_point, point_to_surface);
+/// Interface setup (`ContactSystem::new`: geometry, normals, pairing by grid, and in surface
+/// mode the closest-face check of every node through sorted face bins) on large interfaces:
+/// 101 × 101 coincident pairs, and a 100 × 100-face block on a 120 × 120-face base.
+fn setup(c: &mut Criterion) {
+    let mut g = c.benchmark_group("contact/setup");
+    g.sample_size(10);
+    let paired = BoxMeshSpec {
+        blocks: vec![
+            block("base", [0.0; 3], [100.0, 100.0, 1.0], [100, 100, 1]),
+            block("top", [0.0, 0.0, 1.0], [100.0, 100.0, 1.0], [100, 100, 1]),
+        ],
+        split: vec![["base".into(), "top".into()]],
+        merge_tolerance: 1e-6,
+    }
+    .build("bench")
+    .unwrap();
+    let spec = InterfaceSpec::new("pp", "base-top", "top-base", 0.6, 0.45, 2e3);
+    g.throughput(Throughput::Elements(10201));
+    g.bench_function("paired 10201 pairs", |b| {
+        b.iter(|| ContactSystem::new(black_box(&paired), std::slice::from_ref(&spec), "bench"))
+    });
+    let surface = BoxMeshSpec {
+        blocks: vec![
+            block("base", [0.0; 3], [120.0, 120.0, 1.0], [120, 120, 1]),
+            block("top", [10.3, 10.4, 1.0], [100.0, 100.0, 1.0], [100, 100, 1]),
+        ],
+        split: vec![],
+        merge_tolerance: 1e-6,
+    }
+    .build("bench")
+    .unwrap();
+    let mut spec = InterfaceSpec::new("ps", "top.zmin", "base.zmax", 0.6, 0.45, 0.0);
+    spec.mode = ContactMode::Surface;
+    g.bench_function("surface 10201 nodes on 14400 faces", |b| {
+        b.iter(|| ContactSystem::new(black_box(&surface), std::slice::from_ref(&spec), "bench"))
+    });
+    g.finish();
+}
+
+criterion_group!(
+    benches,
+    pair_kernel,
+    point_to_point,
+    point_to_surface,
+    setup
+);
 criterion_main!(benches);

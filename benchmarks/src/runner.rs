@@ -164,6 +164,8 @@ pub struct Timing {
     pub wall: Duration,
     /// CPU time the process used meanwhile (s), where it can be read.
     pub cpu_s: Option<f64>,
+    /// Time the contact phase took during the timed steps (s), warm-up excluded.
+    pub contact_s: f64,
 }
 
 /// Step `sim` `warmup` times untimed, then until `min_wall` has passed and at least
@@ -176,6 +178,7 @@ pub fn time_steps(
     max_steps: u64,
 ) -> dcfm::Result<Timing> {
     sim.run_steps(warmup)?;
+    let contact0 = sim.contact_seconds;
     let cpu0 = cputime::process_cpu_seconds();
     let start = Instant::now();
     let mut steps = 0;
@@ -185,7 +188,12 @@ pub fn time_steps(
     }
     let wall = start.elapsed();
     let cpu_s = cputime::process_cpu_seconds().zip(cpu0).map(|(b, a)| b - a);
-    Ok(Timing { steps, wall, cpu_s })
+    Ok(Timing {
+        steps,
+        wall,
+        cpu_s,
+        contact_s: sim.contact_seconds - contact0,
+    })
 }
 
 /// Run every case of `config` on every thread count, calling `on_record` as each record is
@@ -217,7 +225,6 @@ pub fn run(
         let bytes_per_element = sim.model.bytes_per_element();
         let nodes = sim.model.mesh.n_nodes();
         for &threads in &config.threads {
-            let contact_before = sim.contact_seconds;
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(threads)
                 .build()?;
@@ -231,9 +238,7 @@ pub fn run(
                 )
             })?;
             let wall_s = timing.wall.as_secs_f64().max(1e-9);
-            let contact_share = spec
-                .interface
-                .then(|| (sim.contact_seconds - contact_before) / wall_s);
+            let contact_share = spec.interface.then(|| timing.contact_s / wall_s);
             let steps_per_s = timing.steps as f64 / wall_s;
             let record = ThroughputRecord {
                 case: spec.name(),

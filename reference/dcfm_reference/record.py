@@ -19,6 +19,7 @@ from typing import Any
 _ROWS: list[dict[str, Any]] = []
 _SERIES: list[dict[str, Any]] = []
 _PERFORMANCE: list[dict[str, Any]] = []
+_DESCRIPTIONS: dict[str, str] = {}
 
 
 def check(
@@ -79,6 +80,12 @@ def series(
     )
 
 
+def describe(case: str, text: str) -> None:
+    """What a cross-check compares, with which set-up, and why its tolerances are what
+    they are (shown under the case's heading in the report)."""
+    _DESCRIPTIONS[case] = " ".join(text.split())
+
+
 def performance(entry: dict[str, Any]) -> None:
     """Record one timing of the performance table (same mesh, same machine, same run)."""
     _PERFORMANCE.append(entry)
@@ -121,14 +128,19 @@ def flush(crosscheck_json: Path, performance_json: Path, commit: str) -> None:
     if _ROWS or _SERIES:
         rows = _merge(crosscheck_json, _ROWS, "case")
         old_series: list[dict[str, Any]] = []
+        old_desc: dict[str, str] = {}
         if crosscheck_json.exists():
             try:
-                old_series = json.loads(crosscheck_json.read_text("utf-8")).get("series", [])
+                old = json.loads(crosscheck_json.read_text("utf-8"))
+                old_series = old.get("series", [])
+                old_desc = old.get("descriptions", {})
             except (json.JSONDecodeError, OSError, AttributeError):
-                old_series = []
+                old_series, old_desc = [], {}
         cases = {s["case"] for s in _SERIES} | {r["case"] for r in _ROWS}
         series_all = [s for s in old_series if s.get("case") not in cases] + _SERIES
-        _write_atomic(crosscheck_json, {"commit": commit, "rows": rows, "series": series_all})
+        desc = {c: t for c, t in old_desc.items() if c not in cases} | _DESCRIPTIONS
+        desc = {c: t for c, t in desc.items() if c in {r["case"] for r in rows}}
+        _write_atomic(crosscheck_json, {"commit": commit, "rows": rows, "series": series_all, "descriptions": desc})
     if _PERFORMANCE:
         rows = _merge(performance_json, _PERFORMANCE, "label")
         _write_atomic(performance_json, {"commit": commit, "rows": rows})

@@ -4,8 +4,10 @@ closed-form transfer function.
 
 Set-up (W3 layering): a soil layer H = 30 m, V_s = 300 m/s, ρ = 2000 kg/m³ over a rock
 layer 30 m, V_s = 1500 m/s, ρ = 2500 kg/m³, on a rigid base whose horizontal motion is
-prescribed (the elastic half-space of W3 needs the absorbing base of the seismic
-boundaries: pending). Vertically propagating SH waves. Rayleigh damping C = αM + βK with
+prescribed (``test_transfer_function_peaks``) and on the elastic rock half-space of W3
+(``test_half_space_transfer_function``: FiPy with the half-space's impedance at the base,
+dcfm's reference free-field column and its 3D model with free-field sides and the
+viscous-spring base under an incident pulse). Vertically propagating SH waves. Rayleigh damping C = αM + βK with
 α = 1.309 1/s, β = 1.061e-3 s (ξ = 5 % at 2.5 and 12.5 Hz); in the continuum
 ρ(ü + α u̇) = ∂z(G(u + β u̇)_z).
 
@@ -72,6 +74,14 @@ def closed_form(f: np.ndarray) -> np.ndarray:
 class FipyColumn:
     """|H(f)| of the column by finite volumes (FiPy), one solve per frequency.
 
+    ``base = "rigid"``: U = 1 on the base face, H = U(top). ``base = "half_space"``: the
+    rock half-space below the base (ρ_r, c_r of the deepest layer) through its impedance,
+    τ_0 = Z (U_0 − 2 U_I) with Z = iωρ_r c_r and U_I = 1 the upgoing wave (the exact 1D
+    transmitting condition); the face value is extrapolated from the first cell,
+    U_0 = (U_1 + h β U_I)/(1 + hβ/2) with β = Z/G*_1 (second order), and the face flux
+    −Z(U_0 − 2U_I) = −γU_1 + 2γU_I, γ = Z/(1 + hβ/2), is added to the first cell's row;
+    H = U(top)/(2 U_I), the surface over the half-space's outcrop motion.
+
     FiPy discretises the flux terms: for each frequency the coupled diffusion operators
     of the real part a and the imaginary part b (coefficient G on the diagonal blocks,
     ∓Gωβ on the off-diagonal ones, harmonic face averages of G between the layers, a = 1
@@ -84,9 +94,10 @@ class FipyColumn:
     iterate, which would need sweeps that diverge above the first resonance.
     """
 
-    def __init__(self):
+    def __init__(self, base: str = "rigid"):
         import fipy
 
+        self.base = base
         self.fp = fipy
         dx, rho, g = [], [], []
         for d, vs, r, _ in LAYERS:
@@ -101,33 +112,63 @@ class FipyColumn:
         self.g = fipy.CellVariable(mesh=self.mesh, value=np.array(g)).harmonicFaceValue
         self.a = fipy.CellVariable(mesh=self.mesh, value=0.0)
         self.b = fipy.CellVariable(mesh=self.mesh, value=0.0)
-        self.a.constrain(1.0, self.mesh.facesLeft)
-        self.b.constrain(0.0, self.mesh.facesLeft)
+        if base == "rigid":
+            self.a.constrain(1.0, self.mesh.facesLeft)
+            self.b.constrain(0.0, self.mesh.facesLeft)
+        self.h0, self.g0 = dx[0], g[0]
         self.top = np.asarray(self.mesh.facesRight.value)
+        self.mat0, self.rhs0 = self.assemble(0.0)
+        mat1, rhs1 = self.assemble(1.0)
+        self.mat1, self.rhs1 = mat1 - self.mat0, rhs1 - self.rhs0
 
-    def __call__(self, f: float) -> float:
-        import scipy.sparse as sp
-        import scipy.sparse.linalg as sla
-
+    def assemble(self, w: float):
+        """FiPy's matrix and right-hand side of the two coupled diffusion equations at
+        angular frequency `w` (assembled only: FiPy's own solve of the diffusion terms
+        alone would be singular on the half-space, whose base has no constraint)."""
         fp = self.fp
-        w = 2 * np.pi * f
         a, b = self.a, self.b
         eq_a = fp.DiffusionTerm(coeff=self.g, var=a) - fp.DiffusionTerm(coeff=self.g * (w * BETA), var=b) == 0
         eq_b = fp.DiffusionTerm(coeff=self.g, var=b) + fp.DiffusionTerm(coeff=self.g * (w * BETA), var=a) == 0
         eq = eq_a & eq_b
         eq.cacheMatrix()
         eq.cacheRHSvector()
-        eq.solve()  # assembles the matrix and right-hand side (the solution is replaced below)
-        mat = eq.matrix.matrix.tocsr()
-        rhs = np.asarray(eq.RHSvector, dtype=float)
+        eq._prepareLinearSystem(var=None, solver=None, boundaryConditions=(), dt=None)
+        return eq.matrix.matrix.tocsr(), np.asarray(eq.RHSvector, dtype=float)
+
+    def __call__(self, f: float) -> float:
+        import scipy.sparse as sp
+        import scipy.sparse.linalg as sla
+
+        w = 2 * np.pi * f
+        a, b = self.a, self.b
+        # The coefficients are G and Gωβ, so FiPy's matrix and right-hand side are affine
+        # in ω: assembled at ω = 0 and 1 once (in the constructor) and combined here.
+        mat = self.mat0 + w * self.mat1
+        rhs = self.rhs0 + w * self.rhs1
         inertia = self.rho * w**2 * self.volume
         mass_damping = self.rho * w * ALPHA * self.volume
         sources = sp.bmat([[sp.diags(inertia), sp.diags(mass_damping)], [sp.diags(-mass_damping), sp.diags(inertia)]])
-        x = sla.spsolve((mat + sources).tocsc(), rhs)
         n = len(self.rho)
+        system = (mat + sources).tolil()
+        scale = 1.0
+        if self.base == "half_space":
+            _, vs, rho, _ = LAYERS[0]
+            z = 1j * w * rho * vs
+            beta = z / (self.g0 * (1 + 1j * w * BETA))
+            gam = z / (1 + self.h0 * beta / 2)
+            # Rows 0 (real part) and n (imaginary part) of the first cell: −γ U_1 + 2γ U_I.
+            system[0, 0] -= gam.real
+            system[0, n] += gam.imag
+            system[n, 0] -= gam.imag
+            system[n, n] -= gam.real
+            rhs = rhs.copy()
+            rhs[0] -= 2 * gam.real
+            rhs[n] -= 2 * gam.imag
+            scale = 0.5
+        x = sla.spsolve(system.tocsc(), rhs)
         a.setValue(x[:n])
         b.setValue(x[n:])
-        return float(abs(a.faceValue.value[self.top][0] + 1j * b.faceValue.value[self.top][0]))
+        return scale * float(abs(a.faceValue.value[self.top][0] + 1j * b.faceValue.value[self.top][0]))
 
 
 def peaks(func, f_grid: np.ndarray, n: int) -> list[tuple[float, float]]:
@@ -192,6 +233,9 @@ def dcfm_transfer():
 
 
 def test_transfer_function_peaks(dcfm_transfer):
+    record.describe(CASE, "The W3 layering on a rigid base with Rayleigh damping: FiPy finite volumes (frequency "
+                    "domain) and dcfm's hex8 column (time domain, prescribed base) against the layer-matrix closed form. "
+                    "Resonances ±2 %, peaks ±5 %.")
     f_grid = np.arange(0.5, 20.0, 0.1)
     ref = peaks(lambda f: abs(closed_form(f)[0]), f_grid, N_PEAKS)
     fv = FipyColumn()
@@ -215,6 +259,89 @@ def test_transfer_function_peaks(dcfm_transfer):
             "closed form": np.abs(closed_form(f_plot)),
             "FiPy": [fv(f) for f in f_plot],
             "dcfm": [abs(dcfm_transfer(f)) for f in f_plot],
+        },
+    )
+    assert not record.failures(rows), record.failures(rows)
+
+
+# ------------------------------------------------------------- elastic half-space (W3)
+
+CASE_HS = "Layered shear column on an elastic half-space (W3 layering): free-field column and 3D model"
+SRC_HS = "docs/verification_references.md §W3 (layer matrices on the half-space, Rayleigh damping)"
+
+
+def test_half_space_transfer_function():
+    """The same layering on the rock half-space: FiPy (impedance condition at the base),
+    dcfm's reference free-field column and the 3D model with free-field sides and the
+    viscous-spring base (W3 set-up, Rayleigh damping α, β in both layers), against the
+    closed form H = U_s/(2 U_I). dcfm: an incident half-sine velocity pulse (0.02 s), 6 s
+    of response; H = S(f) / (2 I(f)) with I the incident velocity at the same instants
+    (the column's full-step velocity at tⁿ, the 3D nodes' V^{n−½} at tⁿ − Δt/2)."""
+    from dcfm_reference import site
+
+    record.describe(CASE_HS, "The W3 layering with Rayleigh damping (α 1.309 1/s, β 1.061e-3 s) in both layers on the "
+                    "elastic rock half-space: FiPy finite volumes (frequency domain, impedance condition τ = iωρc(U − 2U_I) "
+                    "at the base), dcfm's reference free-field column (transmitting base) and its 3D model (free-field "
+                    "sides, viscous-spring base, incident SH pulse), against the layer-matrix closed form H = U_s/(2U_I). "
+                    "Resonances ±2 %, peaks ±5 % (W3).")
+    pulse = {"type": "half_sine", "amplitude": 0.01, "period": 0.02}
+    case = dcfm.Case.from_dict(
+        site.site_case({"definition": "incident", "quantity": "velocity", "x": pulse}, end=6.0, damping=(ALPHA, BETA), title="W3 layering, damped, pulse"),
+        label="w3_half_space",
+    )
+    centre = int(case.nodes_of("centre")[0])
+    corner = int(case.nodes_of("corner")[0])
+    run = case.run(nodes=[centre, corner], elements=[], free_field=True, threads=1)
+    dt = case.dt
+
+    def incident(t):
+        return np.where((t >= 0) & (t <= 0.02), 0.01 * np.sin(np.pi * np.clip(t, 0, 0.02) / 0.02), 0.0)
+
+    ff = run.free_field
+    histories = {
+        "dcfm column": (ff["time"], ff["velocity"][:, -1, 0]),
+        "dcfm 3D centre": (run.time - 0.5 * dt, run.velocity[:, 0, 0]),
+        "dcfm 3D corner": (run.time - 0.5 * dt, run.velocity[:, 1, 0]),
+    }
+
+    def transfer(name):
+        t, v = histories[name]
+        inc = incident(t)
+        return lambda f: abs(site.dtft(v, dt, f) / (2 * site.dtft(inc, dt, f)))
+
+    def closed(f):
+        return abs(site.layer_on_half_space(f, ALPHA, BETA)[0])
+
+    f_grid = np.arange(0.5, 16.0, 0.1)
+    ref = site.peaks(closed, f_grid, N_PEAKS)
+    fv = FipyColumn(base="half_space")
+    codes = {"FiPy": site.peaks(fv, f_grid, N_PEAKS)}
+    for name in histories:
+        codes[name] = site.peaks(transfer(name), f_grid, N_PEAKS)
+    print("closed form", ref)
+    for k, v in codes.items():
+        print(k, v)
+    rows = []
+    for name, pk in codes.items():
+        assert len(pk) == N_PEAKS, (name, pk)
+        for j in range(N_PEAKS):
+            rows.append(record.check(CASE_HS, f"{name}: resonance {j + 1} frequency (Hz)", ref[j][0], pk[j][0], 0.02, SRC_HS, FIPY))
+            rows.append(record.check(CASE_HS, f"{name}: resonance {j + 1} peak |H|", ref[j][1], pk[j][1], 0.05, SRC_HS, FIPY))
+    # dcfm against FiPy directly (same peaks, the two independent discretisations).
+    for j in range(N_PEAKS):
+        rows.append(record.check(CASE_HS, f"dcfm column vs FiPy: resonance {j + 1} peak |H|", codes["FiPy"][j][1], codes["dcfm column"][j][1], 0.05, "FiPy finite volumes (this test)", FIPY))
+    f_plot = np.linspace(0.2, 16.0, 160)
+    record.series(
+        CASE_HS,
+        "|H(f)| = surface / outcrop of the half-space",
+        "frequency (Hz)",
+        "|H|",
+        f_plot,
+        {
+            "closed form": np.abs(site.layer_on_half_space(f_plot, ALPHA, BETA)),
+            "FiPy": [fv(f) for f in f_plot],
+            "dcfm column": [transfer("dcfm column")(f) for f in f_plot],
+            "dcfm 3D centre": [transfer("dcfm 3D centre")(f) for f in f_plot],
         },
     )
     assert not record.failures(rows), record.failures(rows)

@@ -51,6 +51,7 @@ def write_inputs(root: Path, *, history: list[dict] | None = None) -> None:
         "commit": "abc1234",
         "rows": [row("Cross X", "frequency", peer="scikit-fem"), row("Cross Y", "peak", peer="FiPy")],
         "series": [{"case": "Cross Y", "name": "H", "x_label": "f", "y_label": "|H|", "x": [1, 2], "curves": {"dcfm": [1, 2], "FiPy": [1, 2.1]}}],
+        "descriptions": {"Cross Y": "What Y compares & why its tolerance"},
     }))
     (c / "performance.json").write_text(json.dumps({"commit": "abc1234", "rows": [
         {"label": "p dcfm", "problem": "cube", "code": "dcfm", "variant": "full", "threads": 1, "elements": 8, "steps": 10, "wall_s": 1.0, "element_updates_per_s": 80.0},
@@ -106,6 +107,19 @@ def test_row_results_and_failures_are_shown(tmp_path):
     assert "| Cross-checks against independent codes | 2 | 2 | 0 |" in md
     # The performance ratio against dcfm.
     assert "| cube | scipy | CSR | 1 | 8 | 10 | 3.000 | 2.67e+01 | 3.00 |" in md
+
+
+def test_cross_check_descriptions_are_shown(tmp_path):
+    write_inputs(tmp_path)
+    page, md, _ = generate.build(generate.read_inputs(tmp_path))
+    assert "What Y compares &amp; why its tolerance" in page
+    assert "What Y compares & why its tolerance" in md
+    cross = tmp_path / "results/crosscheck/crosscheck.json"
+    d = json.loads(cross.read_text())
+    d["descriptions"] = {"Cross Y": 3}
+    cross.write_text(json.dumps(d))
+    with pytest.raises(generate.ReportError, match="crosscheck.json: 'descriptions' must map case titles to texts"):
+        generate.read_inputs(tmp_path)
 
 
 def test_throughput_drop_is_flagged(tmp_path):

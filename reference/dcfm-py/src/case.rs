@@ -2,9 +2,11 @@
 
 use std::path::{Path, PathBuf};
 
-use pyo3::exceptions::PyValueError;
+use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
+
+use dcfm::motion::Motions;
 
 use crate::arrays::{index_vector, matrix, nodes3, vector};
 use crate::errors::{to_py, IntoPy};
@@ -12,29 +14,63 @@ use crate::simulation::{RunOptions, Simulation};
 use crate::toml_value::dict_to_toml;
 
 /// A validated case: the model built from its text, and the text itself (every
-/// simulation starts from a fresh build of it, so runs are repeatable).
+/// simulation starts from a fresh build of it, so runs are repeatable), with the motions
+/// the caller gave (`motions={"name": dcfm.Motion}`).
 #[pyclass(module = "dcfm", name = "Case", frozen)]
 pub struct Case {
     text: String,
     label: String,
     dir: PathBuf,
+    motions: Motions,
     inner: dcfm::case::Case,
 }
 
+/// `motions`: a dict of name → `dcfm.Motion`, or None.
+fn given_motions(motions: Option<&Bound<'_, PyAny>>) -> PyResult<Motions> {
+    let mut out = Motions::new();
+    let Some(obj) = motions else {
+        return Ok(out);
+    };
+    let d = obj.cast::<PyDict>().map_err(|_| {
+        PyTypeError::new_err("motions: expected a dict of name → dcfm.Motion, or None")
+    })?;
+    for (k, v) in d.iter() {
+        let name: String = k
+            .extract()
+            .map_err(|_| PyTypeError::new_err("motions: keys must be str (the motion's name)"))?;
+        let m = v.cast::<crate::motion::Motion>().map_err(|_| {
+            PyTypeError::new_err(format!(
+                "motions[{name:?}]: expected a dcfm.Motion (dcfm.read_motion, \
+                 Motion.from_arrays, Motion.from_obspy)"
+            ))
+        })?;
+        out.insert(name, m.get().inner.clone());
+    }
+    Ok(out)
+}
+
 impl Case {
-    fn parse(text: String, label: String, dir: PathBuf) -> PyResult<Self> {
-        let inner = dcfm::case::parse_case(&text, &label, &dir).py_err()?;
+    fn parse(
+        text: String,
+        label: String,
+        dir: PathBuf,
+        motions: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Self> {
+        let motions = given_motions(motions)?;
+        let inner = dcfm::case::parse_case_with_motions(&text, &label, &dir, &motions).py_err()?;
         Ok(Self {
             text,
             label,
             dir,
+            motions,
             inner,
         })
     }
 
     /// A fresh build of the case (for a new simulation).
     pub fn rebuild(&self) -> PyResult<dcfm::case::Case> {
-        dcfm::case::parse_case(&self.text, &self.label, &self.dir).py_err()
+        dcfm::case::parse_case_with_motions(&self.text, &self.label, &self.dir, &self.motions)
+            .py_err()
     }
 
     /// The case's label (file path or the label given).
@@ -46,32 +82,78 @@ impl Case {
 #[pymethods]
 impl Case {
     /// Read, parse and validate a case file (relative paths inside it, such as a Gmsh
-    /// mesh, are resolved against the file's folder).
+    /// mesh, are resolved against the file's folder). `motions` (name → `dcfm.Motion`)
+    /// are available to the case's time functions (`{ type = "motion", motion = "name" }`)
+    /// beside its own `[motions.NAME]`.
     #[staticmethod]
-    fn from_file(path: PathBuf) -> PyResult<Self> {
+    #[pyo3(signature = (path, *, motions = None))]
+    fn from_file(path: PathBuf, motions: Option<&Bound<'_, PyAny>>) -> PyResult<Self> {
         let label = path.display().to_string();
         let text =
             std::fs::read_to_string(&path).map_err(|e| to_py(dcfm::DcfmError::io(&label, e)))?;
         let dir = path.parent().unwrap_or(Path::new(".")).to_path_buf();
-        Self::parse(text, label, dir)
+        Self::parse(text, label, dir, motions)
     }
 
     /// Parse and validate a case from its TOML text; `label` names it in errors and
-    /// `base_dir` resolves relative paths.
+    /// `base_dir` resolves relative paths; `motions` as for `from_file`.
     #[staticmethod]
-    #[pyo3(signature = (text, label = "<toml>".to_string(), base_dir = PathBuf::from(".")))]
-    fn from_toml(text: String, label: String, base_dir: PathBuf) -> PyResult<Self> {
-        Self::parse(text, label, base_dir)
+    #[pyo3(signature = (text, label = "<toml>".to_string(), base_dir = PathBuf::from("."), *,
+        motions = None))]
+    fn from_toml(
+        text: String,
+        label: String,
+        base_dir: PathBuf,
+        motions: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Self> {
+        Self::parse(text, label, base_dir, motions)
     }
 
     /// Parse and validate a case given as a dict with the case file's structure. The dict
     /// is written as TOML and read by the same parser as a file, so every error names the
-    /// same field path; `None` values are left out (their default applies).
+    /// same field path; `None` values are left out (their default applies). `motions` as
+    /// for `from_file`.
     #[staticmethod]
-    #[pyo3(signature = (case, label = "<dict>".to_string(), base_dir = PathBuf::from(".")))]
-    fn from_dict(case: &Bound<'_, PyAny>, label: String, base_dir: PathBuf) -> PyResult<Self> {
+    #[pyo3(signature = (case, label = "<dict>".to_string(), base_dir = PathBuf::from("."), *,
+        motions = None))]
+    fn from_dict(
+        case: &Bound<'_, PyAny>,
+        label: String,
+        base_dir: PathBuf,
+        motions: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<Self> {
         let text = dict_to_toml(case, "case")?;
-        Self::parse(text, label, base_dir)
+        Self::parse(text, label, base_dir, motions)
+    }
+
+    /// Whether the case has a static stage (`[static]`).
+    #[getter]
+    fn has_static(&self) -> bool {
+        self.inner.static_plan.is_some()
+    }
+
+    /// Names of the motions the case can use (its `[motions.NAME]` and those given).
+    #[getter]
+    fn motion_names(&self) -> Vec<String> {
+        self.inner.motions.keys().cloned().collect()
+    }
+
+    /// The static stage (`[static]`, docs/static_stage.md) on a fresh build of the model:
+    /// a dict with displacement and displacement_in_situ (n, 3), stress and strain
+    /// (e, 6; element means at the end of the stage, zero for inactive elements), active
+    /// (e,), reactions and static_loads (n, 3), out_of_balance (the final ratio),
+    /// damaged_volume (3,), steps (one dict per step: name, solver, iterations,
+    /// out-of-balance before and after, equations, nonzeros, seconds) and wall_s.
+    #[pyo3(signature = (*, threads = None))]
+    fn r#static<'py>(
+        &self,
+        py: Python<'py>,
+        threads: Option<usize>,
+    ) -> PyResult<Bound<'py, PyDict>> {
+        let built = self.rebuild()?;
+        let (built, result, wall) =
+            crate::static_stage::run_stage(py, built, &self.label, threads)?;
+        crate::static_stage::result_dict(py, &built.model, &result, wall)
     }
 
     /// The TOML text the case was read from.
@@ -198,15 +280,17 @@ impl Case {
     }
 
     /// A simulation of this case at t = 0 (a fresh build of the model), with the case's
-    /// time step or `dt` (checked against the stable step).
+    /// time step or `dt` (checked against the stable step). A case with a static stage
+    /// starts from its static state, as `dcfm run` does (the stage's supports' reactions
+    /// and static loads stay on as constant loads, absorbing springs measured from it).
     #[pyo3(signature = (dt = None))]
-    fn start(&self, dt: Option<f64>) -> PyResult<Simulation> {
-        Simulation::from_case(self, dt)
+    fn start(&self, py: Python<'_>, dt: Option<f64>) -> PyResult<Simulation> {
+        Simulation::from_case(py, self, dt)
     }
 
     /// Run the case from t = 0: `start(dt).run(...)`; see `Simulation.run`.
     #[pyo3(signature = (*, end = None, steps = None, record_every = 1, nodes = None,
-        elements = None, callback = None, callback_every = 100, threads = None, dt = None))]
+        elements = None, callback = None, callback_every = 100, threads = None, dt = None, free_field = false))]
     #[allow(clippy::too_many_arguments)]
     fn run(
         &self,
@@ -220,8 +304,9 @@ impl Case {
         callback_every: u64,
         threads: Option<usize>,
         dt: Option<f64>,
+        free_field: bool,
     ) -> PyResult<crate::simulation::RunResult> {
-        let mut sim = Simulation::from_case(self, dt)?;
+        let mut sim = Simulation::from_case(py, self, dt)?;
         sim.run_with(
             py,
             RunOptions {
@@ -233,6 +318,7 @@ impl Case {
                 callback,
                 callback_every,
                 threads,
+                free_field,
             },
         )
     }

@@ -10,6 +10,9 @@
 //! - [`mesh`]: structured block meshes;
 //! - [`material_point`]: one integration point of any material driven along a strain path;
 //! - [`contact_pair`]: one contact pair, one step (the kernel of VERIFICATION W9);
+//! - [`static_stage`]: `Case.static()`, the static stage's state;
+//! - [`motion`]: ground motions — read, made from arrays (ObsPy traces), processed,
+//!   integrated, measured (response spectrum), and given to cases;
 //! - [`errors`]: the `DcfmError` exception, carrying the core's file/field/value message.
 //!
 //! Wrong Python types or shapes raise `TypeError` / `ValueError` naming the argument
@@ -23,7 +26,9 @@ mod contact_pair;
 mod errors;
 mod material_point;
 mod mesh;
+mod motion;
 mod simulation;
+mod static_stage;
 mod toml_value;
 
 /// The `dcfm._dcfm` extension module (re-exported by the `dcfm` package).
@@ -40,5 +45,9 @@ fn dcfm_module(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(material_point::material_point, m)?)?;
     m.add_function(wrap_pyfunction!(contact_pair::contact_pair_step, m)?)?;
     m.add_function(wrap_pyfunction!(toml_value::to_toml, m)?)?;
+    m.add_class::<motion::Motion>()?;
+    m.add_function(wrap_pyfunction!(motion::read_motion, m)?)?;
+    m.add_function(wrap_pyfunction!(motion::synthetic_motion, m)?)?;
+    m.add_function(wrap_pyfunction!(motion::response_spectrum, m)?)?;
     Ok(())
 }

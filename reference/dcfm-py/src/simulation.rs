@@ -35,6 +35,8 @@ pub struct RunOptions<'py> {
     pub callback: Option<Bound<'py, PyAny>>,
     pub callback_every: u64,
     pub threads: Option<usize>,
+    /// Record the reference free-field column (every level) after every recorded step.
+    pub free_field: bool,
 }
 
 /// Histories gathered during a run (plain vectors, filled without the GIL).
@@ -50,6 +52,14 @@ struct Recorder {
     v: Vec<f64>,
     a: Vec<f64>,
     stress: Vec<f64>,
+    /// The reference free-field column: record it, its level heights, and per record
+    /// the time tⁿ of its last step, displacement and full-step velocity of every level.
+    free_field: bool,
+    ff_levels: Vec<f64>,
+    ff_time: Vec<f64>,
+    ff_u: Vec<f64>,
+    ff_v: Vec<f64>,
+    ff_a: Vec<f64>,
 }
 
 /// The energies of `ENERGY_NAMES`, in that order.
@@ -78,6 +88,26 @@ impl Recorder {
         for &el in &self.elements {
             let (_, s) = sim.model.element_strain_stress(el, &sim.u);
             self.stress.extend(s);
+        }
+        if self.free_field && sim.step > 0 {
+            if let Some(c) = sim
+                .model
+                .boundaries
+                .as_ref()
+                .and_then(|b| b.reference_column())
+            {
+                // The column's state is at tⁿ of the step just taken.
+                self.ff_time.push(sim.time - sim.dt);
+                for l in 0..c.n_levels() {
+                    self.ff_u.extend(c.displacement(l));
+                    let v = c.velocity(l);
+                    self.ff_v.extend(v);
+                    // (V^{n+½} − V^{n−½})/Δt, with V^{n−½} = 2 Vⁿ − V^{n+½}.
+                    self.ff_a.extend(std::array::from_fn::<f64, 3, _>(|d| {
+                        2.0 * (c.v[l][d] - v[d]) / sim.dt
+                    }));
+                }
+            }
         }
     }
 }
@@ -108,6 +138,11 @@ pub struct RunResult {
     pub stress: Py<PyAny>,
     /// Fields at the end of the run (see `Simulation.fields`).
     pub fields: Py<PyAny>,
+    /// With `free_field=True` and seismic boundaries: the reference free-field column,
+    /// a dict of z (levels,), time (k',: tⁿ of each recorded column step), displacement,
+    /// velocity and acceleration (k', levels, 3; full-step velocity at tⁿ, acceleration
+    /// (V^{n+½} − V^{n−½})/Δt); otherwise None.
+    pub free_field: Py<PyAny>,
     /// Steps done in this run, whether the callback stopped it, its wall time (s) and
     /// element updates per second.
     pub steps: u64,
@@ -116,14 +151,38 @@ pub struct RunResult {
     pub element_updates_per_s: f64,
 }
 
+/// A worker pool of `threads` threads (None: rayon's global pool).
+pub fn thread_pool(threads: Option<usize>) -> PyResult<Option<rayon::ThreadPool>> {
+    match threads {
+        Some(0) => Err(PyValueError::new_err("threads: must be ≥ 1")),
+        Some(n) => Ok(Some(
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(n)
+                .build()
+                .map_err(|e| PyValueError::new_err(format!("threads: {e}")))?,
+        )),
+        None => Ok(None),
+    }
+}
+
 impl Simulation {
-    /// A simulation at t = 0 from a fresh build of `case`.
-    pub fn from_case(case: &Case, dt: Option<f64>) -> PyResult<Self> {
+    /// A simulation at t = 0 from a fresh build of `case` (after its static stage, if it
+    /// has one).
+    pub fn from_case(py: Python<'_>, case: &Case, dt: Option<f64>) -> PyResult<Self> {
         let built = case.rebuild()?;
-        let dt = dt.unwrap_or(built.dt);
         let label = case.label().to_string();
-        let sim = dcfm::stage::Simulation::new(built.model, dt, built.safety)
-            .map_err(|e| crate::errors::to_py(e.in_file(&label)))?;
+        let (built, static_result) = if built.static_plan.is_some() {
+            let (b, r, _) = crate::static_stage::run_stage(py, built, &label, None)?;
+            (b, Some(r))
+        } else {
+            (built, None)
+        };
+        let dt = dt.unwrap_or(built.dt);
+        let sim = match &static_result {
+            Some(r) => dcfm::stage::static_stage::start_dynamic(built.model, r, dt, built.safety),
+            None => dcfm::stage::Simulation::new(built.model, dt, built.safety),
+        }
+        .map_err(|e| crate::errors::to_py(e.in_file(&label)))?;
         Ok(Self {
             sim,
             label,
@@ -197,16 +256,24 @@ impl Simulation {
             )?,
             ..Default::default()
         };
-        let pool = match o.threads {
-            Some(0) => return Err(PyValueError::new_err("threads: must be ≥ 1")),
-            Some(n) => Some(
-                rayon::ThreadPoolBuilder::new()
-                    .num_threads(n)
-                    .build()
-                    .map_err(|e| PyValueError::new_err(format!("threads: {e}")))?,
-            ),
-            None => None,
-        };
+        if o.free_field {
+            let column = self
+                .sim
+                .model
+                .boundaries
+                .as_ref()
+                .and_then(|b| b.reference_column());
+            let Some(column) = column else {
+                return Err(PyValueError::new_err(format!(
+                    "free_field: {} has no free-field column (it needs a [seismic] input \
+                     through [[boundary.absorbing]] … input = true, docs/boundaries.md)",
+                    self.label
+                )));
+            };
+            rec.free_field = true;
+            rec.ff_levels = column.levels.clone();
+        }
+        let pool = thread_pool(o.threads)?;
         rec.record(&self.sim);
         let start_step = self.sim.step;
         let t0 = Instant::now();
@@ -260,6 +327,27 @@ impl Simulation {
         }
         let nn = rec.nodes.len();
         let ne = rec.elements.len();
+        let free_field = if rec.free_field {
+            let d = PyDict::new(py);
+            let (kf, nl) = (rec.ff_time.len(), rec.ff_levels.len());
+            d.set_item("z", vector(py, std::mem::take(&mut rec.ff_levels)))?;
+            d.set_item("time", vector(py, std::mem::take(&mut rec.ff_time)))?;
+            d.set_item(
+                "displacement",
+                cube(py, (kf, nl, 3), std::mem::take(&mut rec.ff_u)),
+            )?;
+            d.set_item(
+                "velocity",
+                cube(py, (kf, nl, 3), std::mem::take(&mut rec.ff_v)),
+            )?;
+            d.set_item(
+                "acceleration",
+                cube(py, (kf, nl, 3), std::mem::take(&mut rec.ff_a)),
+            )?;
+            d.into_any().unbind()
+        } else {
+            py.None()
+        };
         Ok(RunResult {
             time: vector(py, rec.time).into_any().unbind(),
             step: vector(py, rec.step).into_any().unbind(),
@@ -269,6 +357,7 @@ impl Simulation {
             acceleration: cube(py, (k, nn, 3), rec.a).into_any().unbind(),
             stress: cube(py, (k, ne, 6), rec.stress).into_any().unbind(),
             fields: self.fields(py)?.into_any().unbind(),
+            free_field,
             nodes: rec.nodes,
             elements: rec.elements,
             steps,
@@ -393,7 +482,8 @@ impl Simulation {
     /// `callback_every` steps; returning `False` stops the run. `threads` sets the worker
     /// threads (default: all cores; results do not depend on it).
     #[pyo3(signature = (*, end = None, steps = None, record_every = 1, nodes = None,
-        elements = None, callback = None, callback_every = 100, threads = None))]
+        elements = None, callback = None, callback_every = 100, threads = None,
+        free_field = false))]
     #[allow(clippy::too_many_arguments)]
     fn run(
         &mut self,
@@ -406,6 +496,7 @@ impl Simulation {
         callback: Option<Bound<'_, PyAny>>,
         callback_every: u64,
         threads: Option<usize>,
+        free_field: bool,
     ) -> PyResult<RunResult> {
         self.run_with(
             py,
@@ -418,8 +509,31 @@ impl Simulation {
                 callback,
                 callback_every,
                 threads,
+                free_field,
             },
         )
+    }
+
+    /// The reference free-field column now (None without seismic boundaries): z
+    /// (levels,), displacement and velocity (levels, 3) at tⁿ of its last step.
+    fn free_field_column<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyDict>>> {
+        let Some(c) = self
+            .sim
+            .model
+            .boundaries
+            .as_ref()
+            .and_then(|b| b.reference_column())
+        else {
+            return Ok(None);
+        };
+        let d = PyDict::new(py);
+        let n = c.n_levels();
+        d.set_item("z", vector(py, c.levels.clone()))?;
+        let u: Vec<[f64; 3]> = (0..n).map(|l| c.displacement(l)).collect();
+        let v: Vec<[f64; 3]> = (0..n).map(|l| c.velocity(l)).collect();
+        d.set_item("displacement", nodes3(py, &u))?;
+        d.set_item("velocity", nodes3(py, &v))?;
+        Ok(Some(d))
     }
 
     /// Element and node fields of the current state: displacement, velocity, acceleration

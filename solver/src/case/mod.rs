@@ -8,6 +8,6 @@ mod build;
 mod schema;
 mod static_schema;
 
-pub use build::{build_materials, load_case, parse_case, Case};
+pub use build::{build_materials, load_case, parse_case, parse_case_with_motions, Case};
 pub use schema::*;
 pub use static_schema::*;

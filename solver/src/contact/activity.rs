@@ -73,10 +73,15 @@ impl ContactSystem {
     }
 
     /// The strength of the pair of node `node` of interface `k`: (μs, cA, σt A, unit normal
-    /// of surface a).
+    /// of surface a). Binary search in the interface's node index (a linear scan here made
+    /// a loop over the pairs quadratic).
     pub fn pair_strength(&self, k: usize, node: u32) -> Option<(f64, f64, f64, [f64; 3])> {
         let iface = self.interfaces.get(k)?;
-        let s = iface.slaves.iter().find(|s| s.node == node)?;
+        let i = iface
+            .slave_index
+            .binary_search_by_key(&node, |&(n, _)| n)
+            .ok()?;
+        let s = &iface.slaves[iface.slave_index[i].1 as usize];
         Some((
             iface.mu_s,
             iface.cohesion * s.area,

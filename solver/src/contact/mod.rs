@@ -30,6 +30,7 @@
 
 mod activity;
 mod checkpoint;
+mod face_bins;
 /// The bilinear face geometry and vector helpers (they belong to the mesh; contact uses them).
 pub use crate::mesh::face_geometry as geom;
 pub mod pair;
@@ -219,6 +220,9 @@ pub(crate) struct Interface {
     /// both pairs and point-to-surface nodes).
     pub snapshot: Vec<SlaveNode>,
     pub prev_force: Vec<[f64; 3]>,
+    /// (node of surface a, index into `slaves`), sorted by node: the slave record of a
+    /// node by binary search.
+    pub slave_index: Vec<(u32, u32)>,
 }
 
 /// All contact interfaces of a model and their states.

@@ -84,7 +84,7 @@ pub fn covered_faces(mesh: &Mesh) -> HashSet<Face> {
 }
 
 /// Rounding length for geometric face matching: 1e-6 of the smallest element edge.
-fn place_tolerance(mesh: &Mesh) -> f64 {
+pub(crate) fn place_tolerance(mesh: &Mesh) -> f64 {
     let mut h = f64::INFINITY;
     for e in 0..mesh.n_elements() {
         let x = mesh.element_coords(e);
@@ -108,7 +108,7 @@ fn place_tolerance(mesh: &Mesh) -> f64 {
 
 /// The face's corner coordinates, rounded to `tol` and sorted (so that the two sides of
 /// an interface, whose node orders differ, give the same key).
-fn place_key(mesh: &Mesh, f: Face, tol: f64) -> [i64; 12] {
+pub(crate) fn place_key(mesh: &Mesh, f: Face, tol: f64) -> [i64; 12] {
     let mut corners: [[i64; 3]; 4] = mesh
         .face_nodes(f)
         .map(|n| mesh.coords[n as usize].map(|c| (c / tol).round() as i64));

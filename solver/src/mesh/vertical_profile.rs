@@ -1,6 +1,7 @@
 //! The column of elements above a base face: walking up from an element through the face
-//! opposite its base to the element that shares it, until the top of the mesh. The free
-//! field takes its layering from such a profile.
+//! opposite its base to the element that shares it — or, across a split (a contact
+//! interface), the element whose face lies at the same place — until the top of the mesh.
+//! The free field takes its layering from such a profile.
 
 use std::collections::HashMap;
 
@@ -34,13 +35,19 @@ pub fn face_centroid(mesh: &Mesh, f: Face) -> [f64; 3] {
 /// Stops at the first face that no other element shares. Errors (as text) when the walk
 /// goes down or sideways (the mesh is not layered there).
 pub fn vertical_profile(mesh: &Mesh, base: Face) -> Result<Vec<ProfileElement>, String> {
+    let tol = crate::mesh::outer_faces::place_tolerance(mesh);
     let mut by_nodes: HashMap<[u32; 4], Vec<Face>> = HashMap::new();
+    let mut by_place: HashMap<[i64; 12], Vec<Face>> = HashMap::new();
     for element in 0..mesh.n_elements() as u32 {
         for local in 0..6u8 {
             let f = Face { element, local };
             let mut key = mesh.face_nodes(f);
             key.sort_unstable();
             by_nodes.entry(key).or_default().push(f);
+            by_place
+                .entry(crate::mesh::outer_faces::place_key(mesh, f, tol))
+                .or_default()
+                .push(f);
         }
     }
     let mut out = Vec::new();
@@ -65,11 +72,14 @@ pub fn vertical_profile(mesh: &Mesh, base: Face) -> Result<Vec<ProfileElement>, 
         });
         let mut key = mesh.face_nodes(top);
         key.sort_unstable();
-        match by_nodes
-            .get(&key)
-            .and_then(|fs| fs.iter().find(|f| f.element != top.element))
-        {
-            Some(&next) => bottom = next,
+        let other = |fs: &Vec<Face>| fs.iter().copied().find(|f| f.element != top.element);
+        let next = by_nodes.get(&key).and_then(other).or_else(|| {
+            by_place
+                .get(&crate::mesh::outer_faces::place_key(mesh, top, tol))
+                .and_then(other)
+        });
+        match next {
+            Some(next) => bottom = next,
             None => return Ok(out),
         }
     }

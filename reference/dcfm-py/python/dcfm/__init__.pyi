@@ -27,11 +27,28 @@ class Case:
     """A case loaded and validated like a case file."""
 
     @staticmethod
-    def from_file(path: str | PathLike[str]) -> Case: ...
+    def from_file(path: str | PathLike[str], *, motions: dict[str, Motion] | None = None) -> Case: ...
     @staticmethod
-    def from_toml(text: str, label: str = "<toml>", base_dir: str | PathLike[str] = ".") -> Case: ...
+    def from_toml(
+        text: str,
+        label: str = "<toml>",
+        base_dir: str | PathLike[str] = ".",
+        *,
+        motions: dict[str, Motion] | None = None,
+    ) -> Case: ...
     @staticmethod
-    def from_dict(case: dict[str, Any], label: str = "<dict>", base_dir: str | PathLike[str] = ".") -> Case: ...
+    def from_dict(
+        case: dict[str, Any],
+        label: str = "<dict>",
+        base_dir: str | PathLike[str] = ".",
+        *,
+        motions: dict[str, Motion] | None = None,
+    ) -> Case: ...
+    @property
+    def has_static(self) -> bool: ...
+    @property
+    def motion_names(self) -> list[str]: ...
+    def static(self, *, threads: int | None = None) -> dict[str, Any]: ...
     @property
     def toml(self) -> str: ...
     @property
@@ -86,6 +103,7 @@ class Case:
         callback_every: int = 100,
         threads: int | None = None,
         dt: float | None = None,
+        free_field: bool = False,
     ) -> RunResult: ...
 
 class Simulation:
@@ -121,7 +139,9 @@ class Simulation:
         callback: Callable[[int, float, dict[str, float]], bool | None] | None = None,
         callback_every: int = 100,
         threads: int | None = None,
+        free_field: bool = False,
     ) -> RunResult: ...
+    def free_field_column(self) -> dict[str, FloatArray] | None: ...
     def fields(self) -> dict[str, FloatArray]: ...
 
 class RunResult:
@@ -137,6 +157,7 @@ class RunResult:
     acceleration: FloatArray
     stress: FloatArray
     fields: dict[str, FloatArray]
+    free_field: dict[str, FloatArray] | None
     steps: int
     stopped: bool
     wall_s: float
@@ -191,3 +212,98 @@ def contact_pair_step(
     tensile_capacity: float = 0.0,
 ) -> dict[str, Any]: ...
 def to_toml(case: dict[str, Any]) -> str: ...
+
+class Motion:
+    """A ground motion: one to three acceleration components (m/s²) on one uniform grid,
+    with their exact integrals from rest and the provenance of every step."""
+
+    @staticmethod
+    def from_arrays(
+        acceleration: npt.ArrayLike,
+        dt: float,
+        units: str,
+        *,
+        components: list[str] | None = None,
+        axes: list[str | None] | None = None,
+        name: str = "arrays",
+        station: str = "",
+        description: str = "",
+        source: str = "arrays",
+    ) -> Motion: ...
+    @staticmethod
+    def from_obspy(
+        data: Any,
+        units: str | None = None,
+        *,
+        axes: list[str | None] | None = None,
+        name: str | None = None,
+        apply_calib: bool = True,
+    ) -> Motion: ...
+    @property
+    def name(self) -> str: ...
+    @property
+    def source(self) -> str: ...
+    @property
+    def format(self) -> str: ...
+    @property
+    def station(self) -> str: ...
+    @property
+    def description(self) -> str: ...
+    @property
+    def units(self) -> str: ...
+    @property
+    def dt(self) -> float: ...
+    @property
+    def npts(self) -> int: ...
+    @property
+    def duration(self) -> float: ...
+    @property
+    def components(self) -> list[str]: ...
+    @property
+    def axes(self) -> list[str | None]: ...
+    @property
+    def provenance(self) -> list[str]: ...
+    @property
+    def time(self) -> FloatArray: ...
+    @property
+    def acceleration(self) -> FloatArray: ...
+    def velocity(self) -> FloatArray: ...
+    def displacement(self) -> FloatArray: ...
+    def process(
+        self,
+        *,
+        window: tuple[float, float] | list[float] | None = None,
+        baseline: Literal["none", "mean", "polynomial"] | None = None,
+        baseline_order: int = 1,
+        taper: float = 0.0,
+        highpass: float | None = None,
+        lowpass: float | None = None,
+        filter_order: int = 4,
+        zero_phase: bool = True,
+        pad: float | None = None,
+        resample_dt: float | None = None,
+        zero_end: bool = False,
+        target_pga: float | dict[str, float] | None = None,
+    ) -> Motion: ...
+    def component(self, name: str) -> Motion: ...
+    def summary(self) -> dict[str, dict[str, Any]]: ...
+    def husid(self, component: str | None = None) -> FloatArray: ...
+    def fourier_amplitude(self, component: str | None = None) -> tuple[FloatArray, FloatArray]: ...
+
+def read_motion(
+    path: str | PathLike[str],
+    format: str | None = None,
+    *,
+    units: str | None = None,
+    dt: float | None = None,
+    components: list[str] | None = None,
+    name: str | None = None,
+) -> Motion: ...
+def synthetic_motion(spec: dict[str, Any], name: str = "synthetic") -> Motion: ...
+def response_spectrum(
+    motion: Motion,
+    periods: npt.ArrayLike,
+    damping: float = 0.05,
+    *,
+    component: str | None = None,
+) -> dict[str, FloatArray]: ...

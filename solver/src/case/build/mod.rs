@@ -52,16 +52,33 @@ pub fn load_case(path: &Path) -> Result<Case> {
 /// Parse and build a case from its text; `label` names it in errors, `dir` resolves
 /// relative paths (the Gmsh file).
 pub fn parse_case(text: &str, label: &str, dir: &Path) -> Result<Case> {
+    parse_case_with_motions(text, label, dir, &crate::motion::Motions::new())
+}
+
+/// [`parse_case`] with ground motions made by the caller (the Python module: records
+/// read by ObsPy, numpy arrays) available to the case's time functions by name, beside
+/// the case's own `[motions.NAME]`; a name may not be in both.
+pub fn parse_case_with_motions(
+    text: &str,
+    label: &str,
+    dir: &Path,
+    given: &crate::motion::Motions,
+) -> Result<Case> {
     let file: CaseFile = toml::from_str(text).map_err(|e| DcfmError::Parse {
         file: label.to_string(),
         message: e.to_string().trim_end().to_string(),
     })?;
-    build(file, label, dir)
+    build(file, label, dir, given)
 }
 
-fn build(mut file: CaseFile, label: &str, dir: &Path) -> Result<Case> {
+fn build(
+    mut file: CaseFile,
+    label: &str,
+    dir: &Path,
+    given: &crate::motion::Motions,
+) -> Result<Case> {
     time::check_time(&file.time, label)?;
-    let motions = motions::build_motions(&mut file, label, dir)?;
+    let motions = motions::build_motions(&mut file, label, dir, given)?;
     let mut mesh = mesh::build_mesh(&file.mesh, label, dir)?;
     mesh::add_node_sets(&mut mesh, &file.node_sets, label)?;
     crate::mesh::outer_faces::add_bounding_box_face_sets(&mut mesh);

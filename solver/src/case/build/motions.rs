@@ -7,12 +7,29 @@
 use std::path::Path;
 
 use crate::case::schema::CaseFile;
-use crate::error::Result;
+use crate::error::{DcfmError, Result};
 use crate::motion::{load_motions, Motions};
 
-/// Load the motions and resolve the time functions that use them.
-pub(super) fn build_motions(file: &mut CaseFile, label: &str, dir: &Path) -> Result<Motions> {
-    let motions = load_motions(&file.motions, label, dir)?;
+/// Load the motions, add those the caller made (`given`; a name the case defines too is
+/// an error), and resolve the time functions that use them.
+pub(super) fn build_motions(
+    file: &mut CaseFile,
+    label: &str,
+    dir: &Path,
+    given: &Motions,
+) -> Result<Motions> {
+    let mut motions = load_motions(&file.motions, label, dir)?;
+    for (name, m) in given {
+        if motions.contains_key(name) {
+            return Err(DcfmError::invalid(
+                label,
+                format!("motions.{name}"),
+                "defined in the case",
+                "a name not also given by the caller (rename one of the two motions)",
+            ));
+        }
+        motions.insert(name.clone(), m.clone());
+    }
     resolve_time_functions(file, &motions, label)?;
     Ok(motions)
 }

@@ -29,7 +29,14 @@ impl<'a> Cursor<'a> {
 
     /// Line number (1-based) of the current position, for messages.
     pub(super) fn line(&self) -> usize {
-        self.bytes[..self.pos.min(self.bytes.len())]
+        self.line_at(self.pos)
+    }
+
+    /// Line number (1-based) of byte `pos`, for messages. It counts the newlines before
+    /// `pos` (linear in the file), so it is called only once an error is being built:
+    /// counting for every value read made the reader quadratic in the file size.
+    fn line_at(&self, pos: usize) -> usize {
+        self.bytes[..pos.min(self.bytes.len())]
             .iter()
             .filter(|&&b| b == b'\n')
             .count()
@@ -66,10 +73,12 @@ impl<'a> Cursor<'a> {
     }
 
     fn ascii<T: std::str::FromStr>(&mut self, what: &str) -> Result<T, String> {
-        let line = self.line();
+        let start = self.pos;
         let t = self.token(what)?;
-        t.parse()
-            .map_err(|_| format!("{what}: '{t}' is not a valid number (line {line})"))
+        t.parse().map_err(|_| {
+            let line = self.line_at(start);
+            format!("{what}: '{t}' is not a valid number (line {line})")
+        })
     }
 
     /// A `size_t` (count or tag).
@@ -112,10 +121,11 @@ impl<'a> Cursor<'a> {
     /// A count of items that each take at least `min_bytes` in the file: larger than what
     /// the rest of the file could hold is an error (so nothing is allocated for it).
     pub(super) fn count(&mut self, what: &str, min_bytes: usize) -> Result<usize, String> {
-        let line = self.line();
+        let start = self.pos;
         let n = self.size(what)?;
         let room = (self.bytes.len() - self.pos.min(self.bytes.len())) / min_bytes.max(1);
         if n > room as u64 {
+            let line = self.line_at(start);
             return Err(format!(
                 "{what} = {n} (line {line}): more than the rest of the file can hold"
             ));
@@ -154,12 +164,13 @@ impl<'a> Cursor<'a> {
         if self.pos >= self.bytes.len() {
             return Ok(None);
         }
-        let line = self.line();
+        let start = self.pos;
         let t = self.token("a section header")?;
         match t.strip_prefix('$') {
             Some(name) if !name.is_empty() => Ok(Some(name)),
             _ => Err(format!(
-                "line {line}: expected a section header such as $Nodes, found '{}'",
+                "line {}: expected a section header such as $Nodes, found '{}'",
+                self.line_at(start),
                 t.chars().take(40).collect::<String>()
             )),
         }

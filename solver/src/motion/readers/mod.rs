@@ -44,6 +44,8 @@ pub enum Format {
     Smc,
     /// Made by the synthetic generator.
     Synthetic,
+    /// Samples handed over by a program (the Python module: numpy arrays, ObsPy traces).
+    Arrays,
 }
 
 impl Format {
@@ -80,6 +82,7 @@ impl Format {
             Format::Cosmos => "cosmos",
             Format::Smc => "smc",
             Format::Synthetic => "synthetic",
+            Format::Arrays => "arrays",
         }
     }
 
@@ -167,12 +170,12 @@ pub fn read_str(text: &str, label: &str, options: &ReadOptions) -> Result<Record
         Format::Knet => knet::read(text, label)?,
         Format::Cosmos => cosmos::read(text, label, options.dt)?,
         Format::Smc => smc::read(text, label)?,
-        Format::Synthetic => {
+        Format::Synthetic | Format::Arrays => {
             return Err(DcfmError::invalid(
                 label,
                 "format",
-                "synthetic",
-                "a file format; synthetic motions are made, not read",
+                format.name(),
+                "a file format; synthetic motions and arrays are made, not read",
             ))
         }
     };

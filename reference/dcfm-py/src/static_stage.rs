@@ -35,6 +35,7 @@ pub fn run_stage(
         end,
         safety,
         output,
+        probes,
         motions,
         static_plan,
     } = built;
@@ -64,6 +65,7 @@ pub fn run_stage(
             end,
             safety,
             output,
+            probes,
             motions,
             static_plan,
         },

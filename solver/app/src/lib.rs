@@ -6,6 +6,7 @@
 //! histories, the JSON summary, atomic writes). The binary `dcfm` (src/main.rs) parses
 //! the command line.
 
+pub mod frames;
 pub mod mesh_cmd;
 pub mod motion_cmd;
 pub mod output;

@@ -3,7 +3,8 @@
 //! ```text
 //! dcfm check CASE                       validate, print the model summary and the stable step
 //! dcfm run CASE [--out DIR] [--threads N] [--resume] [--quiet]
-//! dcfm mesh yingxiuwan [--variant full|ci] [--out DIR]
+//! dcfm mesh yingxiuwan [--variant full|ci] [--measure LIST] [--end T] [--out DIR]
+//! dcfm post yingxiuwan RUN_DIR [--case CASE]
 //! dcfm motion FILE… [--format F] [--units U] [--dt DT] [processing flags] [--out DIR] [--plot svg]
 //! ```
 
@@ -59,6 +60,13 @@ enum Command {
         /// Mesh variant: "full" (≈ the paper's 171k hex8) or "ci" (≈ 10⁴ elements).
         #[arg(long, default_value = "full")]
         variant: String,
+        /// Anti-seismic measures (paper §6): "none", "all", or a comma-separated list of
+        /// reinforced_rock, upper_anchorage, isolation_layer.
+        #[arg(long, default_value = "none")]
+        measure: String,
+        /// End time of the seismic stage (s); default 60.
+        #[arg(long)]
+        end: Option<f64>,
         /// Output directory.
         #[arg(long, default_value = "yingxiuwan")]
         out: PathBuf,
@@ -88,8 +96,18 @@ fn main() -> ExitCode {
         Command::Mesh {
             model,
             variant,
+            measure,
+            end,
             out,
-        } => dcfm_app::mesh_cmd::run_mesh_command(&model, &variant, &out),
+        } => dcfm_app::mesh_cmd::run_mesh_command(
+            &model,
+            &dcfm_app::mesh_cmd::MeshRequest {
+                variant: &variant,
+                measure: &measure,
+                end,
+                out: &out,
+            },
+        ),
         Command::Motion(args) => match dcfm_app::motion_cmd::run(&args) {
             Ok(lines) => {
                 for l in lines {

@@ -1,13 +1,19 @@
-//! `dcfm mesh yingxiuwan [--variant full|ci] [--out DIR]`: generate the powerhouse mesh
-//! (Gmsh MSH 4.1, to inspect and edit in Gmsh) and the case file that reads it, and print
-//! the element counts, the quality figures and the time taken.
+//! `dcfm mesh yingxiuwan [--variant full|ci] [--measure LIST] [--end T] [--out DIR]`:
+//! generate the powerhouse mesh (Gmsh MSH 4.1, to inspect and edit in Gmsh) and the whole
+//! case file that reads it, and print the element counts, the quality figures, the time
+//! step and the time taken. The case is written twice: once to build the model and find
+//! its stable step (contact, anchors and boundaries included), then with the step that
+//! puts the field outputs exactly every 0.1 s.
 
 use std::path::Path;
 use std::time::Instant;
 
 use dcfm::error::{DcfmError, Result};
+use dcfm::mesh::generators::cavern::extrude::ELEMENT_SETS;
 use dcfm::mesh::generators::cavern::{generate, QualityReport};
-use dcfm::mesh::generators::yingxiuwan::{benches, case_toml, geometry, Variant};
+use dcfm::mesh::generators::yingxiuwan::{
+    benches, case_toml, geometry, CaseSpec, Measures, Timing, Variant, DURATION,
+};
 use dcfm::mesh::gmsh_write::prepare_gmsh_export;
 
 use crate::output::{write_atomic, write_atomic_with};
@@ -21,27 +27,98 @@ pub struct MeshOutput {
     pub generate_s: f64,
     pub write_s: f64,
     pub regions: Vec<(String, usize)>,
+    /// Time step written into the case (s) and the number of steps.
+    pub dt: f64,
+    pub steps: u64,
 }
 
-/// Generate the Yingxiuwan model of `variant` into `out`.
-pub fn mesh_yingxiuwan(variant: &str, out: &Path) -> Result<MeshOutput> {
-    let variant = Variant::parse(variant).ok_or_else(|| {
-        DcfmError::invalid("command line", "--variant", variant, "\"full\" or \"ci\"")
+/// What to generate.
+#[derive(Clone, Debug)]
+pub struct MeshRequest<'a> {
+    pub variant: &'a str,
+    /// Comma-separated anti-seismic measures ("none", "all", or names).
+    pub measure: &'a str,
+    /// End time of the seismic stage (s); default 60.
+    pub end: Option<f64>,
+    pub out: &'a Path,
+}
+
+/// Generate the Yingxiuwan model of `req.variant` with `req.measure` into `req.out`.
+pub fn mesh_yingxiuwan(req: &MeshRequest) -> Result<MeshOutput> {
+    let out = req.out;
+    let variant = Variant::parse(req.variant).ok_or_else(|| {
+        DcfmError::invalid(
+            "command line",
+            "--variant",
+            req.variant,
+            "\"full\" or \"ci\"",
+        )
     })?;
+    let measures = Measures::parse(req.measure).ok_or_else(|| {
+        DcfmError::invalid(
+            "command line",
+            "--measure",
+            req.measure,
+            format!(
+                "\"none\", \"all\" or a comma-separated list of {:?}",
+                Measures::NAMES
+            ),
+        )
+    })?;
+    let end = req.end.unwrap_or(DURATION);
+    if !(end.is_finite() && end > 0.0) {
+        return Err(DcfmError::invalid(
+            "command line",
+            "--end",
+            end,
+            "a positive time (s)",
+        ));
+    }
     std::fs::create_dir_all(out).map_err(|e| DcfmError::io(out.display().to_string(), e))?;
     let t0 = Instant::now();
-    let model = generate(&geometry(), &variant.density(), &benches())?;
+    let model = generate(
+        &geometry(),
+        &variant.density(),
+        &benches(),
+        &measures.zones(),
+    )?;
     let generate_s = t0.elapsed().as_secs_f64();
     let t1 = Instant::now();
-    let stem = format!("yingxiuwan_{}", variant.name());
+    let stem = format!("yingxiuwan_{}{}", variant.name(), measures.suffix());
     let mesh_file = out.join(format!("{stem}.msh"));
     let case_file = out.join(format!("{stem}.toml"));
     let export = prepare_gmsh_export(&model.mesh)?;
     write_atomic_with(&mesh_file, |w| export.write(w))?;
-    write_atomic(
-        &case_file,
-        case_toml(variant, &format!("{stem}.msh")).as_bytes(),
-    )?;
+    // The element sets of the survey table for the post-processing (reports/yingxiuwan_post.py).
+    let sets: std::collections::BTreeMap<&str, &Vec<u32>> = ELEMENT_SETS
+        .iter()
+        .chain(&["lining", "inner"])
+        .map(|&n| (n, &model.mesh.element_sets[n]))
+        .collect();
+    let sets_json = serde_json::to_vec(&serde_json::json!({
+        "element_sets": sets,
+        "regions": model.mesh.region_names,
+    }))
+    .map_err(|e| DcfmError::invalid("sets", "json", e, "serialisable"))?;
+    write_atomic(&out.join(format!("{stem}_sets.json")), &sets_json)?;
+    let mut spec = CaseSpec {
+        variant,
+        measures,
+        mesh_file: format!("{stem}.msh"),
+        timing: Timing {
+            dt: None,
+            vtu_every: 0,
+            checkpoint_every: 0,
+        },
+        end,
+    };
+    write_atomic(&case_file, case_toml(&spec).as_bytes())?;
+    // The model's stable step (safety factor and damping included), then the step that
+    // divides the frame interval.
+    let stable_dt = dcfm::case::load_case(&case_file)?.dt;
+    spec.timing = Timing::from_stable_step(stable_dt);
+    write_atomic(&case_file, case_toml(&spec).as_bytes())?;
+    let dt = spec.timing.dt.unwrap_or(stable_dt);
     let write_s = t1.elapsed().as_secs_f64();
     let m = &model.mesh;
     let regions = m
@@ -65,11 +142,13 @@ pub fn mesh_yingxiuwan(variant: &str, out: &Path) -> Result<MeshOutput> {
         generate_s,
         write_s,
         regions,
+        dt,
+        steps: (end / dt).round() as u64,
     })
 }
 
 /// The `dcfm mesh` subcommand: generate, print the summary, exit code 0 / 2.
-pub fn run_mesh_command(model: &str, variant: &str, out: &Path) -> std::process::ExitCode {
+pub fn run_mesh_command(model: &str, req: &MeshRequest) -> std::process::ExitCode {
     use std::io::Write;
     if model != "yingxiuwan" {
         let _ = writeln!(
@@ -78,7 +157,7 @@ pub fn run_mesh_command(model: &str, variant: &str, out: &Path) -> std::process:
         );
         return std::process::ExitCode::from(2);
     }
-    match mesh_yingxiuwan(variant, out) {
+    match mesh_yingxiuwan(req) {
         Ok(r) => {
             let q = &r.quality;
             let mut o = std::io::stdout();
@@ -107,7 +186,12 @@ pub fn run_mesh_command(model: &str, variant: &str, out: &Path) -> std::process:
             let _ = writeln!(o, "case      {}", r.case_file.display());
             let _ = writeln!(
                 o,
-                "time      generated in {:.2} s, written in {:.2} s",
+                "time      Δt = {:.4e} s, {} steps (fields every 0.1 s)",
+                r.dt, r.steps
+            );
+            let _ = writeln!(
+                o,
+                "cost      generated in {:.2} s, written and checked in {:.2} s",
                 r.generate_s, r.write_s
             );
             std::process::ExitCode::SUCCESS

@@ -243,6 +243,28 @@ impl HistoryColumns {
     }
 }
 
+/// A field frame: the whole mesh, or with `[output.frames]` the compact frame and, when
+/// due, the whole mesh into `full.pvd` (yingxiuwan branch hook; `crate::frames`).
+fn write_frame(
+    sim: &Simulation,
+    out: &Path,
+    pvd: &mut PvdCollection,
+    frames: Option<&mut crate::frames::CompactFrames>,
+    first: bool,
+    last: bool,
+) -> Result<()> {
+    match frames {
+        None => write_state_vtu(sim, out, pvd),
+        Some(f) => {
+            f.write(sim, out, pvd)?;
+            if f.full_due(sim.step, first, last) {
+                write_state_vtu(sim, out, f.full_collection())?;
+            }
+            Ok(())
+        }
+    }
+}
+
 /// Write one VTU of the current state and add it to the collection.
 fn write_state_vtu(sim: &Simulation, out: &Path, pvd: &mut PvdCollection) -> Result<()> {
     let model = &sim.model;
@@ -488,6 +510,15 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
         read_checkpoint(&bytes[staged.dynamic_offset..], &ckpt_label, &mut sim)?;
         resumed_from = Some(sim.step);
     }
+    let mut frames = match &output.frames {
+        Some(f) => Some(crate::frames::CompactFrames::new(
+            f,
+            &sim,
+            out,
+            resumed_from.map(|_| sim.time),
+        )?),
+        None => None,
+    };
     let pvd_path = out.join("case.pvd");
     let hist_path = out.join("histories.csv");
     let (mut pvd, mut hist) = if resumed_from.is_some() {
@@ -511,7 +542,7 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
         columns.row(&sim, &output, &mut row);
         h.append(&row)?;
         let mut p = PvdCollection::create(&pvd_path)?;
-        write_state_vtu(&sim, out, &mut p)?;
+        write_frame(&sim, out, &mut p, frames.as_mut(), true, false)?;
         (p, h)
     };
     remove_stale_files(out, &pvd)?;
@@ -559,7 +590,8 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
             }
         }
         if (output.vtu_every > 0 && sim.step % output.vtu_every == 0) || sim.step == total_steps {
-            write_state_vtu(&sim, out, &mut pvd)?;
+            let last = sim.step == total_steps;
+            write_frame(&sim, out, &mut pvd, frames.as_mut(), false, last)?;
         }
         if output.checkpoint_every > 0 && sim.step % output.checkpoint_every == 0 {
             hist.flush()?;

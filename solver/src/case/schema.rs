@@ -100,6 +100,11 @@ pub struct OutputSection {
     /// Element probes by name: a point, an element id or a set (`[[output.element_probes]]`).
     #[serde(default)]
     pub element_probes: Vec<ElementProbeSpec>,
+    /// Compact field frames (`[output.frames]`, added on the yingxiuwan branch): when
+    /// given, the frames every `vtu_every` steps hold the elements of `regions` only,
+    /// Float32 and compressed, and the whole mesh is written every `full_every` steps.
+    #[serde(default)]
+    pub frames: Option<FramesSection>,
 }
 
 /// How a probe on a set reports.
@@ -154,6 +159,26 @@ pub struct ElementProbeSpec {
     pub reduce: ProbeReduce,
 }
 
+/// `[output.frames]`: what the compact frames hold (docs/outputs.md).
+#[derive(Clone, Debug, Deserialize, PartialEq)]
+#[serde(deny_unknown_fields)]
+pub struct FramesSection {
+    /// Regions or element sets whose elements every frame holds (e.g. the concrete,
+    /// whose nodes carry the contact fields of the interfaces).
+    pub regions: Vec<String>,
+    /// Steps between two frames of the whole mesh (Float64, every field); 0: the first
+    /// and the last step only.
+    #[serde(default)]
+    pub full_every: u64,
+    /// A frame of the anchor bars (line cells with their axial force) with every frame.
+    #[serde(default = "yes")]
+    pub anchors: bool,
+}
+
+fn yes() -> bool {
+    true
+}
+
 /// How the damaged volume of eq. (27) is measured.
 #[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
 #[serde(rename_all = "snake_case")]
@@ -181,6 +206,7 @@ impl Default for OutputSection {
             damaged_volume: DamagedVolumeMeasure::Point,
             probes: Vec::new(),
             element_probes: Vec::new(),
+            frames: None,
         }
     }
 }

@@ -131,6 +131,9 @@ pub struct BondSlipBar {
     pub lengths: Vec<f64>,
     /// Axial displacement w_i and half-step velocity of the nodes.
     pub w: Vec<f64>,
+    /// Axial host displacement t·u(p_i) at installation ([`AnchorBars::install_at`]; 0
+    /// for bars present from the start): the bond springs measure from it.
+    pub host_reference: Vec<f64>,
     pub v: Vec<f64>,
     /// Internal forces on the nodes at the last internal-force pass.
     f: Vec<f64>,
@@ -169,6 +172,9 @@ pub struct AnchorBars {
     plastic_trial: Vec<f64>,
     /// Axial force of every segment at the last internal-force pass (N).
     pub force: Vec<f64>,
+    /// Elongation t·(u(q) − u(p)) of every perfect-bond segment at installation
+    /// ([`AnchorBars::install_at`]; empty: installed in the reference configuration).
+    elongation_reference: Vec<f64>,
 }
 
 /// A bar's name and its history group.
@@ -271,6 +277,7 @@ impl AnchorBars {
                     mass: trib.iter().map(|l| steel.density * area * l).collect(),
                     lengths,
                     w: vec![0.0; n],
+                    host_reference: vec![0.0; n],
                     v: vec![0.0; n],
                     f: vec![0.0; n],
                     head_load: steel.pretension,
@@ -292,6 +299,35 @@ impl AnchorBars {
         self.plastic = vec![0.0; n];
         self.plastic_trial = vec![0.0; n];
         self.force = vec![0.0; n];
+    }
+
+    /// Install the bars in the deformed configuration `u` (host displacements): from now
+    /// on they measure the host's displacement from `u`, so a bar grouted into rock that
+    /// has already moved carries only its pretension until the rock moves further (bolts
+    /// installed after the excavation, the static stage's displacements handed to the
+    /// dynamic stage). The bars' own state (plastic strains, bond–slip nodes) is kept.
+    pub fn install_at(&mut self, mesh: &Mesh, u: &[[f64; 3]]) {
+        let axial = |host: u32, w: &[f64; 8], t: &[f64; 3]| {
+            let conn = mesh.elements[host as usize];
+            (0..8)
+                .map(|a| {
+                    let ua = u[conn[a] as usize];
+                    w[a] * (t[0] * ua[0] + t[1] * ua[1] + t[2] * ua[2])
+                })
+                .sum::<f64>()
+        };
+        self.elongation_reference = self
+            .segments
+            .iter()
+            .map(|s| axial(s.host, &s.g, &s.t))
+            .collect();
+        for b in self.bond_slip.iter_mut() {
+            b.host_reference = b
+                .hosts
+                .iter()
+                .map(|h| axial(h.element, &h.n, &b.t))
+                .collect();
+        }
     }
 
     /// Number of bars.
@@ -346,6 +382,9 @@ impl AnchorBars {
                 let ua = u[conn[a] as usize];
                 du += g[a] * (t[0] * ua[0] + t[1] * ua[1] + t[2] * ua[2]);
             }
+            if let Some(r) = self.elongation_reference.get(k) {
+                du -= r;
+            }
             let info = &self.bars[bar as usize];
             let (ea, fy, n0) = (info.ea, info.yield_force, info.pretension);
             let n = self.axial_force(k, ea, fy, n0, du / length);
@@ -386,7 +425,7 @@ impl AnchorBars {
                     let ua = u[conn[a] as usize];
                     uh += h.n[a] * (b.t[0] * ua[0] + b.t[1] * ua[1] + b.t[2] * ua[2]);
                 }
-                let bond = b.bond[i] * (b.w[i] - uh);
+                let bond = b.bond[i] * (b.w[i] - (uh - b.host_reference[i]));
                 fi += bond;
                 b.f[i] = fi;
                 // The host takes −bond along t (and the plate reaction at the head).

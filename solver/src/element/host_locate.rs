@@ -161,23 +161,48 @@ impl HostLocator {
         let len = (0..3).map(|d| (b[d] - a[d]).powi(2)).sum::<f64>().sqrt();
         let at = |s: f64| -> [f64; 3] { std::array::from_fn(|d| a[d] + s * (b[d] - a[d])) };
         let samples = ((len / (0.25 * self.min_size)).ceil() as usize).max(4);
-        // Host of each sample (the point just inside the bar at the ends).
+        // Sample parameters: the two ends and the midpoints of `samples` equal pieces, so
+        // that a face crossed within half a piece of an end is found as well. An end on
+        // the mesh's boundary that the locator misses by round-off takes the host of the
+        // sample next to it.
+        let mut params = Vec::with_capacity(samples + 2);
+        params.push(0.0);
+        params.extend((1..=samples).map(|i| (i as f64 - 0.5) / samples as f64));
+        params.push(1.0);
+        let host_at = |s: f64| self.locate(mesh, &at(s)).map(|h| h.element).ok_or(s);
+        let mut sample_hosts = Vec::with_capacity(params.len());
+        for (i, &s) in params.iter().enumerate() {
+            let h = match host_at(s) {
+                Ok(h) => Some(h),
+                Err(_) if i == 0 || i + 1 == params.len() => None,
+                Err(s) => return Err(s),
+            };
+            sample_hosts.push(h);
+        }
+        let n = params.len();
+        if sample_hosts[0].is_none() {
+            sample_hosts[0] = sample_hosts[1];
+        }
+        if sample_hosts[n - 1].is_none() {
+            sample_hosts[n - 1] = sample_hosts[n - 2];
+        }
         let mut cuts = vec![0.0];
         let mut hosts = Vec::new();
-        let host_at = |s: f64| self.locate(mesh, &at(s)).map(|h| h.element).ok_or(s);
         let mut s_prev = 0.0f64;
-        let mut e_prev = host_at(0.5 / samples as f64)?;
-        for i in 1..=samples {
-            let s = (i as f64 - 0.5) / samples as f64;
-            let s = if i == samples {
-                1.0 - 0.5 / samples as f64
-            } else {
-                s
-            };
-            let e = host_at(s)?;
-            if e != e_prev {
-                // Bisect the crossing out of e_prev between s_prev and s.
-                let (mut lo, mut hi) = (s_prev.max(0.5 / samples as f64), s);
+        let mut e_prev = sample_hosts[0].ok_or(0.0)?;
+        for (&s, e) in params.iter().zip(&sample_hosts).skip(1) {
+            let e = e.ok_or(s)?;
+            // Between two samples the bar may cross more than one face (it clips the
+            // corner or edge of a third element): follow it element by element.
+            let mut lo_bound = s_prev;
+            let mut crossings = 0;
+            while e != e_prev {
+                crossings += 1;
+                if crossings > 16 {
+                    return Err(s);
+                }
+                // Bisect the crossing out of e_prev between lo_bound and s.
+                let (mut lo, mut hi) = (lo_bound, s);
                 for _ in 0..60 {
                     let mid = 0.5 * (lo + hi);
                     if self.locate_in(mesh, e_prev, &at(mid), 1e-12).is_some() {
@@ -186,11 +211,29 @@ impl HostLocator {
                         hi = mid;
                     }
                 }
-                cuts.push(0.5 * (lo + hi));
-                hosts.push(e_prev);
-                e_prev = e;
+                let c = 0.5 * (lo + hi);
+                // An end on a face shared by two elements: no piece of zero length.
+                if (c - cuts[cuts.len() - 1]) * len > 1e-9 {
+                    cuts.push(c);
+                    hosts.push(e_prev);
+                }
+                // The element just past the crossing (1 µm along the bar); a clip shorter
+                // than that is left to the element of the next sample.
+                let past = (c + 1e-6 / len).min(s);
+                let next = match self.locate(mesh, &at(past)) {
+                    Some(h) if h.element != e_prev => h.element,
+                    Some(_) => e,
+                    None => return Err(past),
+                };
+                e_prev = next;
+                lo_bound = c;
             }
             s_prev = s;
+        }
+        if (1.0 - cuts[cuts.len() - 1]) * len <= 1e-9 && cuts.len() > 1 {
+            // The last crossing lies on the end itself: the last piece ends there.
+            cuts.pop();
+            e_prev = hosts.pop().unwrap_or(e_prev);
         }
         cuts.push(1.0);
         hosts.push(e_prev);
@@ -208,5 +251,66 @@ impl HostLocator {
             return Ok((c2, h2));
         }
         Ok((cuts, hosts))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::mesh::box_generator::BoxMeshSpec;
+
+    /// A bar whose end lies just past a face (closer to it than half a sample) gets a piece
+    /// in the element beyond, and one that ends on a face gets no piece of zero length.
+    #[test]
+    fn cuts_found_near_the_ends_of_a_bar() {
+        // Ten 1 m cubes along x; the locator samples at 0.25 m (a quarter of the edge).
+        let mesh = BoxMeshSpec::single("b", [0.0; 3], [10.0, 1.0, 1.0], [10, 1, 1])
+            .build("test")
+            .unwrap();
+        let loc = HostLocator::new(&mesh, |_| true);
+        let host = |x: f64| loc.locate(&mesh, &[x, 0.5, 0.5]).unwrap().element;
+        // 0.2 → 3.02 m: 12 samples of 0.235 m; the last midpoint (2.90 m) lies in the third
+        // cube, the end in the fourth.
+        let (cuts, hosts) = loc
+            .cut(&mesh, &[0.2, 0.5, 0.5], &[3.02, 0.5, 0.5], None)
+            .unwrap();
+        let len = 2.82;
+        let at: Vec<f64> = cuts.iter().map(|s| 0.2 + s * len).collect();
+        assert_eq!(hosts, vec![host(0.5), host(1.5), host(2.5), host(3.01)]);
+        for (x, want) in at.iter().zip([0.2, 1.0, 2.0, 3.0, 3.02]) {
+            assert!((x - want).abs() < 1e-9, "cuts at {at:?}");
+        }
+        // 0.5 → 3.0 m: the end on the face between the third and the fourth cube.
+        let (cuts, hosts) = loc
+            .cut(&mesh, &[0.5, 0.5, 0.5], &[3.0, 0.5, 0.5], None)
+            .unwrap();
+        assert_eq!(hosts, vec![host(0.5), host(1.5), host(2.5)]);
+        assert_eq!(cuts.len(), 4);
+        assert!(cuts.windows(2).all(|w| (w[1] - w[0]) * 2.5 > 0.1));
+    }
+
+    /// A bar that clips the corner of an element between two samples: every piece lies
+    /// in its host (both ends located in it).
+    #[test]
+    fn corner_clips_get_their_own_piece() {
+        let mesh = BoxMeshSpec::single("b", [0.0; 3], [4.0, 4.0, 1.0], [4, 4, 1])
+            .build("test")
+            .unwrap();
+        let loc = HostLocator::new(&mesh, |_| true);
+        // From (0.1, 1.05) to (3.9, 3.05) — through cells (0,1), (1,1) … passing the
+        // corner (1, 2) region diagonally; and a steep one that clips corners closely.
+        for (a, b) in [
+            ([0.1, 1.05, 0.5], [3.9, 3.05, 0.5]),
+            ([0.5, 0.999, 0.5], [3.5, 1.001, 0.5]),
+            ([0.9, 1.9, 0.5], [1.2, 2.2001, 0.5]),
+        ] {
+            let (cuts, hosts) = loc.cut(&mesh, &a, &b, None).unwrap();
+            let at = |s: f64| -> [f64; 3] { std::array::from_fn(|d| a[d] + s * (b[d] - a[d])) };
+            for (w, &h) in cuts.windows(2).zip(&hosts) {
+                assert!(loc.locate_in(&mesh, h, &at(w[0]), 1e-6).is_some(), "{a:?}");
+                assert!(loc.locate_in(&mesh, h, &at(w[1]), 1e-6).is_some(), "{a:?}");
+                assert!(w[1] > w[0]);
+            }
+        }
     }
 }

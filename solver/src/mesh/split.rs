@@ -28,6 +28,25 @@ pub struct SplitError {
 /// from it. Errors: unknown or equal regions, a pair that shares no face, and a node where
 /// a split pair is joined through a third region split from neither (name all three).
 pub fn split_region_pairs(mesh: &mut Mesh, pairs: &[[String; 2]]) -> Result<(), SplitError> {
+    split_regions(mesh, pairs, true)
+}
+
+/// As [`split_region_pairs`], but a pair that shares no face is no error: its regions are
+/// kept apart where they touch along edges or at corners (a generator that lists every
+/// pair of bodies that must not share a node, whichever of them happen to share faces);
+/// its face sets are then empty.
+pub fn split_region_pairs_touching(
+    mesh: &mut Mesh,
+    pairs: &[[String; 2]],
+) -> Result<(), SplitError> {
+    split_regions(mesh, pairs, false)
+}
+
+fn split_regions(
+    mesh: &mut Mesh,
+    pairs: &[[String; 2]],
+    require_shared_face: bool,
+) -> Result<(), SplitError> {
     let err = |pair: usize, message: String| SplitError { pair, message };
     let mut idx: Vec<[u16; 2]> = Vec::with_capacity(pairs.len());
     for (p, [a, b]) in pairs.iter().enumerate() {
@@ -87,7 +106,7 @@ pub fn split_region_pairs(mesh: &mut Mesh, pairs: &[[String; 2]]) -> Result<(), 
         }
     }
     for (p, (fa, _)) in pair_faces.iter_mut().enumerate() {
-        if fa.is_empty() {
+        if fa.is_empty() && require_shared_face {
             return Err(err(
                 p,
                 format!(

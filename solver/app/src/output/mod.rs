@@ -4,6 +4,7 @@
 //! - [`activity`]: which cells and points are active (excavation, placement);
 //! - [`atomic`]: temp file + fsync + rename, so a crash never leaves a half-written file;
 //! - [`vtu`]: ParaView meshes with point and cell fields (XML UnstructuredGrid, raw binary);
+//! - [`vtu_compressed`]: compact frames (Float32, zlib, a subset of the cells) for long runs;
 //! - [`pvd`]: the time collection of the VTU files, rewritten after every step;
 //! - [`histories`]: CSV time histories, buffered, resumable;
 //! - [`summary`]: the end-of-run summary as pretty JSON.
@@ -14,12 +15,14 @@ pub mod histories;
 pub mod pvd;
 pub mod summary;
 pub mod vtu;
+pub mod vtu_compressed;
 
 pub use atomic::{write_atomic, write_atomic_with};
 pub use histories::HistoryWriter;
 pub use pvd::{PvdCollection, PvdEntry};
 pub use summary::write_summary;
 pub use vtu::{write_vtu, write_vtu_lines, VtuField};
+pub use vtu_compressed::{write_vtu_compressed, CellSubset};
 
 /// The display form of a path used in error messages.
 pub(crate) fn label(path: &std::path::Path) -> String {

@@ -22,6 +22,30 @@ pub(super) fn build_output(model: &Model, section: &OutputSection, label: &str) 
             "must be in (0, 1)",
         ));
     }
+    // Compact frames (yingxiuwan branch): their sets must exist.
+    if let Some(f) = &section.frames {
+        if f.regions.is_empty() {
+            return Err(DcfmError::invalid(
+                label,
+                "output.frames.regions",
+                "[]",
+                "at least one region or element set",
+            ));
+        }
+        for (k, r) in f.regions.iter().enumerate() {
+            if model.mesh.region_index(r).is_none() && !model.mesh.element_sets.contains_key(r) {
+                return Err(DcfmError::invalid(
+                    label,
+                    format!("output.frames.regions[{k}]"),
+                    r,
+                    format!(
+                        "a region or element set (regions: {:?})",
+                        model.mesh.region_names
+                    ),
+                ));
+            }
+        }
+    }
     if section.history_every == 0 {
         return Err(DcfmError::invalid(
             label,

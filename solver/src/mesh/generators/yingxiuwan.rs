@@ -1,10 +1,13 @@
 //! The Yingxiuwan underground powerhouse (paper §4, Fig. 6, Table 1) as a preset of the
 //! parametric cavern: the dimensions the paper gives, the ones it does not (chosen and
-//! justified in docs/yingxiuwan.md), two mesh variants, and the case file that goes with
-//! the mesh (mesh, regions, materials, interfaces; the static stage and the seismic input
-//! are later sections of that file).
+//! justified in docs/yingxiuwan.md), two mesh variants, the anti-seismic measures of §6
+//! as case variants, and the whole case file that goes with the mesh: materials,
+//! interfaces, rock bolts, the static stage (K0 in-situ stress under the overburden,
+//! excavation by benches from the crown down, the arch lining cast after the top heading,
+//! the rest of the concrete after the last bench), the seismic stage (viscous-spring base
+//! with the outcrop input, free-field sides, a buried top), outputs and checkpoints.
 
-use super::cavern::{CavernGeometry, Density};
+use super::cavern::{CavernGeometry, Density, RockZones};
 
 /// Mesh variants: `Full` near the paper's 171,432 hex8 / 189,187 nodes, `Ci` ≈ 10⁴
 /// elements for runs in continuous integration (same geometry, coarser cells).
@@ -31,7 +34,8 @@ impl Variant {
         }
     }
 
-    /// Cell sizes: the paper's largest element, 7.0 m, is the cap of both.
+    /// Cell sizes. Full: the paper's largest element, 7.0 m, is the cap. CI: the far field
+    /// coarser (cap 12 m), a smoke-and-physics model, not a converged one.
     pub fn density(self) -> Density {
         match self {
             Variant::Full => Density {
@@ -41,9 +45,77 @@ impl Variant {
             },
             Variant::Ci => Density {
                 h_core: 6.0,
-                growth: 1.6,
-                h_max: 7.0,
+                growth: 2.0,
+                h_max: 12.0,
             },
+        }
+    }
+}
+
+/// The anti-seismic measures of paper §6, each a case variant (any combination).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Measures {
+    /// A reinforced (grouted, stiffer and stronger) rock zone around the excavation.
+    pub reinforced_rock: bool,
+    /// Anchorage of the upper structure: bars through the arch and upper sidewall lining
+    /// into the rock.
+    pub upper_anchorage: bool,
+    /// A soft isolation layer between the lower structure and the rock.
+    pub isolation_layer: bool,
+}
+
+/// Thickness of the reinforced rock zone (m): beyond the 6 m system bolts.
+pub const REINFORCED_ZONE: f64 = 8.0;
+
+impl Measures {
+    /// The names accepted by [`Measures::parse`].
+    pub const NAMES: [&'static str; 3] = ["reinforced_rock", "upper_anchorage", "isolation_layer"];
+
+    /// Parse a comma-separated list of measure names, "none" or "all".
+    pub fn parse(s: &str) -> Option<Self> {
+        let mut m = Measures::default();
+        for name in s.split(',').map(str::trim).filter(|n| !n.is_empty()) {
+            match name {
+                "none" => {}
+                "all" => {
+                    m = Measures {
+                        reinforced_rock: true,
+                        upper_anchorage: true,
+                        isolation_layer: true,
+                    }
+                }
+                "reinforced_rock" => m.reinforced_rock = true,
+                "upper_anchorage" => m.upper_anchorage = true,
+                "isolation_layer" => m.isolation_layer = true,
+                _ => return None,
+            }
+        }
+        Some(m)
+    }
+
+    /// File-name suffix: "" for the base case, else `_` and the measures joined by `+`.
+    pub fn suffix(self) -> String {
+        let names: Vec<&str> = [
+            (self.reinforced_rock, "reinforced_rock"),
+            (self.upper_anchorage, "upper_anchorage"),
+            (self.isolation_layer, "isolation_layer"),
+        ]
+        .iter()
+        .filter(|(on, _)| *on)
+        .map(|(_, n)| *n)
+        .collect();
+        if names.is_empty() {
+            String::new()
+        } else {
+            format!("_{}", names.join("+"))
+        }
+    }
+
+    /// The rock zones these measures need in the mesh.
+    pub fn zones(self) -> RockZones {
+        RockZones {
+            reinforced: self.reinforced_rock.then_some(REINFORCED_ZONE),
+            isolation: self.isolation_layer,
         }
     }
 }
@@ -87,30 +159,115 @@ pub fn benches() -> Vec<f64> {
     vec![27.5, 16.0, 9.0, f64::NEG_INFINITY]
 }
 
-/// The case file of a variant whose mesh is `mesh_file` (relative to the case file).
-pub fn case_toml(variant: Variant, mesh_file: &str) -> String {
-    format!(
-        r#"# Yingxiuwan underground powerhouse, {variant} variant — written by `dcfm mesh yingxiuwan`.
-# Paper: Yang, Chen & Xiao (2014) §4; dimensions and choices: docs/yingxiuwan.md.
-title = "Yingxiuwan underground powerhouse ({variant} mesh)"
+/// Rock above the model's top (m): the ground surface lies this far above it (assumption,
+/// docs/yingxiuwan.md: the crown is then 155.5 m deep).
+pub const OVERBURDEN: f64 = 100.0;
 
-# ---- Time: a placeholder so that `dcfm check` runs; the seismic stage sets it. ----------
+/// Rock density (kg/m³) and the gravity used for the overburden's weight.
+pub const ROCK_DENSITY: f64 = 2700.0;
+pub const GRAVITY: f64 = 9.81;
+
+/// Time settings the generator fills in once the model's stable step is known.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Timing {
+    /// Time step (s); `None`: the solver's default (safety × critical).
+    pub dt: Option<f64>,
+    /// Steps between two field outputs (0: only the last step).
+    pub vtu_every: u64,
+    /// Steps between two checkpoints.
+    pub checkpoint_every: u64,
+}
+
+/// Duration of the seismic stage (s): the paper's 60 s (the 20–80 s window of Wolong).
+pub const DURATION: f64 = 60.0;
+
+/// Interval of the field outputs (s).
+pub const FRAME_INTERVAL: f64 = 0.1;
+
+/// Interval of the checkpoints (s).
+pub const CHECKPOINT_INTERVAL: f64 = 5.0;
+
+impl Timing {
+    /// Field outputs every [`FRAME_INTERVAL`] exactly and checkpoints every
+    /// [`CHECKPOINT_INTERVAL`]: the step is the largest that divides the frame interval and
+    /// does not exceed `stable_dt`.
+    pub fn from_stable_step(stable_dt: f64) -> Self {
+        let per_frame = (FRAME_INTERVAL / stable_dt).ceil().max(1.0) as u64;
+        Timing {
+            dt: Some(FRAME_INTERVAL / per_frame as f64),
+            vtu_every: per_frame,
+            checkpoint_every: per_frame * (CHECKPOINT_INTERVAL / FRAME_INTERVAL).round() as u64,
+        }
+    }
+}
+
+/// What goes into the case file.
+#[derive(Clone, Debug, PartialEq)]
+pub struct CaseSpec {
+    pub variant: Variant,
+    pub measures: Measures,
+    /// The Gmsh file, relative to the case file.
+    pub mesh_file: String,
+    pub timing: Timing,
+    /// End time of the seismic stage (s).
+    pub end: f64,
+}
+
+/// The case file of `spec`.
+pub fn case_toml(spec: &CaseSpec) -> String {
+    let geo = geometry();
+    let m = spec.measures;
+    let top = geo.model[2];
+    let overburden_pressure = ROCK_DENSITY * GRAVITY * OVERBURDEN;
+    let mut s = String::new();
+    let measures = if spec.measures == Measures::default() {
+        "base case".to_string()
+    } else {
+        spec.measures
+            .suffix()
+            .trim_start_matches('_')
+            .replace('+', ", ")
+    };
+    s += &format!(
+        r#"# Yingxiuwan underground powerhouse, {variant} variant, {measures} — written by
+# `dcfm mesh yingxiuwan`. Paper: Yang, Chen & Xiao (2014) §4–6; every dimension and choice
+# not in the paper: docs/yingxiuwan.md. Run: `dcfm run THIS_FILE`; post-processing:
+# `dcfm post yingxiuwan RUN_DIR`.
+title = "Yingxiuwan underground powerhouse ({variant} mesh, {measures})"
+
 [time]
-end = 0.01
-
+end = {end:?}
+"#,
+        variant = spec.variant.name(),
+        end = spec.end,
+    );
+    if let Some(dt) = spec.timing.dt {
+        s += &format!("dt = {dt:e}                 # frames every {FRAME_INTERVAL} s exactly\n");
+    }
+    s += &format!(
+        r#"
+# Fields every {FRAME_INTERVAL} s, histories (energies, damaged volume per region, contact
+# state areas, anchor forces) every step, a checkpoint every {CHECKPOINT_INTERVAL} s (`dcfm run --resume`).
 [output]
+vtu_every = {vtu}
+history_every = 1
+checkpoint_every = {ckpt}
 damage_threshold = 0.1          # docs/plastic_damage.md §5
 damaged_volume = "point"
 
-# ---- Mesh: regions rock / lining / inner; the interfaces' nodes are already duplicated
-# (face sets lining-rock, rock-lining, inner-rock, rock-inner, lining-inner, inner-lining),
-# so no `split` here. Outer faces xmin … zmax; excavated rock surface `excavation` and per
-# bench `excavation_1` (crown) … `excavation_4` (bottom); survey element sets arch,
-# upper_sidewalls, generator_floor, turbine_floor, pedestal_inner_wall,
-# crane_beam_corbels, junctions (and pedestals, turbine_layer_columns, turbine_layer_walls,
-# mass_concrete, tunnel_lining). -------------------------------------------------------
+# ---- Mesh: regions rock{zones} / lining / inner / excavated (the excavated volume, as rock,
+# removed bench by bench in the static stage; the concrete overlaps it and is placed after).
+# The interfaces' nodes are already duplicated: face sets lining-rock, rock-lining,
+# inner-rock, rock-inner, lining-inner, inner-lining. Element sets: excavation_1 (crown) …
+# excavation_4 (bottom), concrete_1 … concrete_4 (concrete by bench), the survey sets
+# arch, upper_sidewalls, generator_floor, turbine_floor, pedestal_inner_wall,
+# crane_beam_corbels, junctions (and pedestals, turbine_layer_columns,
+# turbine_layer_walls, mass_concrete, tunnel_lining). Face sets: excavation (the rock
+# surface), bolts_arch, bolts_upper_sidewalls (its parts behind the arch and upper
+# sidewall lining), lining_face_arch, lining_face_upper_sidewalls, lining_surface,
+# inner_surface, xmin … zmax. ------------------------------------------------------------
 [mesh]
-gmsh = "{mesh_file}"
+gmsh = "{mesh}"
 
 # ---- Materials: Table 1 of the paper with the plastic-damage mapping of
 # docs/plastic_damage.md §4; densities chosen in docs/yingxiuwan.md. ------------------
@@ -118,7 +275,7 @@ gmsh = "{mesh_file}"
 model = "plastic_damage"
 young = 10.0e9
 poisson = 0.25
-density = 2700.0
+density = {rho:?}
 [materials.rock.plastic_damage]
 ft0 = 1.97e6
 cohesion = 2.18e6
@@ -133,21 +290,93 @@ density = 2450.0
 ft0 = 1.30e6
 cohesion = 2.0e6
 friction_angle_deg = 46.0
-
+"#,
+        vtu = spec.timing.vtu_every,
+        ckpt = spec.timing.checkpoint_every,
+        zones = match (m.reinforced_rock, m.isolation_layer) {
+            (false, false) => "",
+            (true, false) => " / rock_reinforced",
+            (false, true) => " / rock_isolation",
+            (true, true) => " / rock_reinforced / rock_isolation",
+        },
+        mesh = spec.mesh_file,
+        rho = ROCK_DENSITY,
+    );
+    if m.reinforced_rock {
+        s += &format!(
+            r#"
+# Measure: reinforced rock within {REINFORCED_ZONE} m of the excavation (consolidation grouting
+# and bolting): modulus +50 %, cohesion and tensile strength +20 % (docs/yingxiuwan.md).
+[materials.rock_reinforced]
+model = "plastic_damage"
+young = 15.0e9
+poisson = 0.25
+density = {ROCK_DENSITY:?}
+[materials.rock_reinforced.plastic_damage]
+ft0 = 2.364e6
+cohesion = 2.616e6
+friction_angle_deg = 41.6
+"#
+        );
+    }
+    if m.isolation_layer {
+        s += r#"
+# Measure: a soft isolation layer (one cell of the rock around the lower structure):
+# elastic, E = 1 GPa (a 0.1 m layer of E ≈ 85 MPa spread over the ≈ 1.2 m cell of the full
+# mesh has the same stiffness per area; docs/yingxiuwan.md).
+[materials.isolation]
+model = "elastic"
+young = 1.0e9
+poisson = 0.3
+density = 1800.0
+"#;
+    }
+    s += r#"
+# Rock: one-point integration with hourglass control (the paper's mesh size); concrete:
+# full 2×2×2 (thin members bend). Rayleigh damping α = 0.6 1/s (5 % at 1 Hz, 1.6 % at
+# 3 Hz; mass-proportional only, so the step is not reduced); the free field follows it.
 [[regions]]
 name = "rock"
 material = "rock"
 integration = "one_point"
-
+damping = { alpha = 0.6 }
+"#;
+    if m.reinforced_rock {
+        s += r#"
+[[regions]]
+name = "rock_reinforced"
+material = "rock_reinforced"
+integration = "one_point"
+damping = { alpha = 0.6 }
+"#;
+    }
+    if m.isolation_layer {
+        s += r#"
+[[regions]]
+name = "rock_isolation"
+material = "isolation"
+integration = "one_point"
+damping = { alpha = 0.6 }
+"#;
+    }
+    s += r#"
 [[regions]]
 name = "lining"
 material = "concrete"
 integration = "full"
+damping = { alpha = 0.6 }
 
 [[regions]]
 name = "inner"
 material = "concrete"
 integration = "full"
+damping = { alpha = 0.6 }
+
+[[regions]]
+name = "excavated"
+material = "rock"
+integration = "one_point"
+damping = { alpha = 0.6 }
 
 # ---- Interfaces (dynamic contact force method, paper §2): concrete on rock and the
 # lining on the inner structure; friction and cohesion chosen in docs/yingxiuwan.md. ---
@@ -175,22 +404,149 @@ mu_s = 1.0
 mu_d = 0.75
 cohesion = 1.0e6
 
-# ---- Static stage (in-situ stress, excavation by benches `excavation_1..4`, lining and
-# inner structure activated): to be added by the static stage. ------------------------
+# ---- Rock bolts (docs/anchors.md; typical Chinese practice for powerhouse caverns,
+# docs/yingxiuwan.md): fully grouted φ25 HRB335 bars at 1.5 m × 1.5 m, 6 m in the arch,
+# 5 m in the upper sidewalls, from the excavated rock surface into the rock. Installed
+# when the seismic stage starts (in the static stage's final configuration). -----------
+[[anchors.patterns]]
+name = "bolts_arch"
+face_set = "bolts_arch"
+length = 6.0
+spacing = 1.5
+diameter = 0.025
+young = 200e9
+yield_stress = 335e6
 
-# ---- Seismic input, free-field sides, viscous-spring base: to be added. --------------
+[[anchors.patterns]]
+name = "bolts_upper_sidewalls"
+face_set = "bolts_upper_sidewalls"
+length = 5.0
+spacing = 1.5
+diameter = 0.025
+young = 200e9
+yield_stress = 335e6
+"#;
+    if m.upper_anchorage {
+        s += r#"
+# Measure: anchorage of the upper structure — φ32 HRB400 bars at 1.5 m × 1.5 m from the
+# lining's inner face through the lining (1 m) and 7 m into the rock, tying the arch and
+# the upper sidewall lining to the rock across the interface.
+[[anchors.patterns]]
+name = "anchorage_arch"
+face_set = "lining_face_arch"
+length = 8.0
+spacing = 1.5
+diameter = 0.032
+young = 200e9
+yield_stress = 400e6
 
-# ---- Anchor bars (docs/anchors.md), e.g. rock bolts from the excavated surface:
-# [[anchors.patterns]]
-# face_set = "rock-lining"
-# length = 6.0
-# spacing = 1.5
-# diameter = 0.028
-# young = 200e9
-# yield_stress = 400e6
+[[anchors.patterns]]
+name = "anchorage_upper_sidewalls"
+face_set = "lining_face_upper_sidewalls"
+length = 8.0
+spacing = 1.5
+diameter = 0.032
+young = 200e9
+yield_stress = 400e6
+"#;
+    }
+    s += &format!(
+        r#"
+[loads.gravity]
+acceleration = [0.0, 0.0, -{GRAVITY}]
+
+# ---- Seismic stage (paper §4.4–4.5): viscous-spring base through which the input enters,
+# free-field sides, the model's top {OVERBURDEN} m below the ground surface coupled to the free
+# field (columns and walls continue through the overburden). Input: the Wolong-like
+# synthetic preset (docs/motion.md) as rock-outcrop motion, x = EW, y = NS, z = UD; any
+# record in a standard format replaces it (change [motions.wolong]). --------------------
+[motions.wolong]
+synthetic = {{ preset = "wolong", seed = 1 }}
+
+[[boundary.absorbing]]
+set = "outer.zmin"
+kind = "viscous_spring"
+input = true
+
+[boundary.free_field]
+sides = ["outer.xmin", "outer.xmax", "outer.ymin", "outer.ymax"]
+top = "outer.zmax"
+
+[seismic]
+quantity = "acceleration"
+definition = "outcrop"
+x = {{ type = "motion", motion = "wolong", component = "x" }}
+y = {{ type = "motion", motion = "wolong", component = "y" }}
+z = {{ type = "motion", motion = "wolong", component = "z" }}
+
+[[seismic.overburden]]
+thickness = {OVERBURDEN:?}
+material = "rock"
+
+# ---- Static stage (paper §4.6: excavation and concrete before the earthquake): K0 = 1
+# in-situ stress below the ground surface at z = {surface} m (the overburden's weight on the
+# model's top), excavation in four benches from the crown down, the arch lining cast after
+# the top heading (arch-first method), the rest of the concrete after the last bench.
+# Rollers on the sides, fixed base; dynamic relaxation where the rock yields. ----------
+[static]
+solver = "relaxation"
+tolerance = 1e-4
+max_iterations = 200000
+
+[[static.fixed]]
+set = "outer.zmin"
+dofs = "xyz"
+[[static.fixed]]
+set = "outer.xmin"
+dofs = "x"
+[[static.fixed]]
+set = "outer.xmax"
+dofs = "x"
+[[static.fixed]]
+set = "outer.ymin"
+dofs = "y"
+[[static.fixed]]
+set = "outer.ymax"
+dofs = "y"
+
+[[static.loads]]
+set = "outer.zmax"
+pressure = {p:e}            # ρ g × {OVERBURDEN} m
+
+[static.in_situ]
+method = "k0"
+solver = "direct"
+ground_surface = {surface:?}
+k0 = 1.0
+
+[[static.steps]]
+name = "top heading"
+excavate = ["excavation_1"]
+
+[[static.steps]]
+name = "arch lining"
+activate = ["concrete_1"]
+
+[[static.steps]]
+name = "bench 2 (to the generator floor)"
+excavate = ["excavation_2"]
+
+[[static.steps]]
+name = "bench 3 (turbine layer)"
+excavate = ["excavation_3"]
+
+[[static.steps]]
+name = "bench 4 (pits and bottom)"
+excavate = ["excavation_4"]
+
+[[static.steps]]
+name = "sidewall lining, corbels, tunnel linings, inner structure"
+activate = ["concrete_2", "concrete_3", "concrete_4"]
 "#,
-        variant = variant.name(),
-    )
+        surface = top + OVERBURDEN,
+        p = overburden_pressure,
+    );
+    s
 }
 
 #[cfg(test)]
@@ -199,25 +555,35 @@ mod tests {
     use crate::mesh::generators::cavern::generate;
     use crate::mesh::hex8_shape::check_jacobian;
 
-    /// The CI variant: every element valid, all sets present, sizes within the paper's cap,
-    /// the paper's outer dimensions, the three interfaces, the survey sets where they belong.
+    /// The CI variant: every element valid, all sets present, sizes within the variant's
+    /// cap, the paper's outer dimensions, the three interfaces, the survey sets where they
+    /// belong, the excavated volume meshed and overlapped by the concrete.
     #[test]
     fn ci_variant_is_valid_and_complete() {
         let geo = geometry();
-        let model = generate(&geo, &Variant::Ci.density(), &benches()).unwrap();
+        let d = Variant::Ci.density();
+        let model = generate(&geo, &d, &benches(), &RockZones::default()).unwrap();
         let m = &model.mesh;
         for e in 0..m.n_elements() {
             check_jacobian(&m.element_coords(e)).unwrap();
         }
         let q = &model.quality;
-        assert!(q.max_edge <= 7.0 + 1e-9, "{q:?}");
+        assert!(q.max_edge <= d.h_max + 1e-9, "{q:?}");
         assert!(q.min_scaled_jacobian > 0.3, "{q:?}");
-        for d in 0..3 {
-            let lo = m.coords.iter().map(|x| x[d]).fold(f64::INFINITY, f64::min);
-            let hi = m.coords.iter().map(|x| x[d]).fold(-f64::INFINITY, f64::max);
+        for dim in 0..3 {
+            let lo = m
+                .coords
+                .iter()
+                .map(|x| x[dim])
+                .fold(f64::INFINITY, f64::min);
+            let hi = m
+                .coords
+                .iter()
+                .map(|x| x[dim])
+                .fold(-f64::INFINITY, f64::max);
             assert!(
-                lo.abs() < 1e-9 && (hi - geo.model[d]).abs() < 1e-9,
-                "axis {d}: {lo}..{hi}"
+                lo.abs() < 1e-9 && (hi - geo.model[dim]).abs() < 1e-9,
+                "axis {dim}: {lo}..{hi}"
             );
         }
         for name in [
@@ -228,10 +594,10 @@ mod tests {
             "zmin",
             "zmax",
             "excavation",
-            "excavation_1",
-            "excavation_2",
-            "excavation_3",
-            "excavation_4",
+            "bolts_arch",
+            "bolts_upper_sidewalls",
+            "lining_face_arch",
+            "lining_face_upper_sidewalls",
             "lining-rock",
             "rock-lining",
             "inner-rock",
@@ -241,13 +607,61 @@ mod tests {
         ] {
             assert!(!m.face_sets[name].is_empty(), "{name}");
         }
+        // Benches: excavated rock and concrete, every concrete element in one bench set.
+        let mut concrete: Vec<u32> = Vec::new();
+        for b in 1..=4 {
+            assert!(
+                !m.element_sets[&format!("excavation_{b}")].is_empty(),
+                "{b}"
+            );
+            concrete.extend(&m.element_sets[&format!("concrete_{b}")]);
+        }
+        concrete.sort_unstable();
+        let mut all: Vec<u32> = m.element_sets["lining"].clone();
+        all.extend(&m.element_sets["inner"]);
+        all.sort_unstable();
+        assert_eq!(concrete, all);
+        // Every concrete element overlaps an excavated one (same corners).
+        let corners = |e: u32| {
+            let mut c: Vec<[i64; 3]> = m
+                .element_coords(e as usize)
+                .iter()
+                .map(|p| p.map(|v| (v * 1e6).round() as i64))
+                .collect();
+            c.sort_unstable();
+            c
+        };
+        let excavated: std::collections::HashSet<Vec<[i64; 3]>> = m.element_sets["excavated"]
+            .iter()
+            .map(|&e| corners(e))
+            .collect();
+        assert!(concrete.iter().all(|&e| excavated.contains(&corners(e))));
+        // The excavation sets from the crown down: bench 1 lies above bench 2, etc.
+        let zc = |e: u32| {
+            m.element_coords(e as usize)
+                .iter()
+                .map(|p| p[2])
+                .sum::<f64>()
+                / 8.0
+                - geo.origin[2]
+        };
+        let levels = benches();
+        for b in 1..=4 {
+            for &e in &m.element_sets[&format!("excavation_{b}")] {
+                let z = zc(e);
+                assert!(z >= levels[b - 1] - 1e-9, "bench {b}: {z}");
+                if b > 1 {
+                    assert!(z < levels[b - 2], "bench {b}: {z}");
+                }
+            }
+        }
         // The survey sets lie where the geometry puts them (cavern frame).
         let centre = |e: u32| {
             let x = m.element_coords(e as usize);
             let mut c = [0.0; 3];
             for p in x {
-                for d in 0..3 {
-                    c[d] += 0.125 * (p[d] - geo.origin[d]);
+                for dim in 0..3 {
+                    c[dim] += 0.125 * (p[dim] - geo.origin[dim]);
                 }
             }
             c
@@ -257,6 +671,11 @@ mod tests {
                 centre(e)[2] > geo.springline() - geo.lining,
                 "arch element {e}"
             );
+        }
+        // No concrete above the excavated crown.
+        for &e in &all {
+            let c = centre(e);
+            assert!(c[2] < geo.outer_arch(c[0]), "concrete element {e} at {c:?}");
         }
         for &e in &m.element_sets["generator_floor"] {
             let z = centre(e)[2];
@@ -268,14 +687,82 @@ mod tests {
                 "junction element {e}"
             );
         }
-        // The lining and the inner structure touch the rock only through the interfaces.
+        // Concrete shares no node with the rock or with the excavated rock (interfaces and
+        // overlap), the excavated rock shares its boundary with the rock.
         let rock = m.nodes_of("rock").unwrap();
+        let exc = m.nodes_of("excavated").unwrap();
         for concrete in ["lining", "inner"] {
             let nodes = m.nodes_of(concrete).unwrap();
             assert!(
-                nodes.iter().all(|n| rock.binary_search(n).is_err()),
+                nodes
+                    .iter()
+                    .all(|n| rock.binary_search(n).is_err() && exc.binary_search(n).is_err()),
                 "{concrete}"
             );
         }
+        assert!(exc.iter().any(|n| rock.binary_search(n).is_ok()));
+    }
+
+    /// The measures' zones: the reinforced zone surrounds the excavation (all concrete
+    /// touches reinforced rock only), the isolation layer wraps the inner structure.
+    #[test]
+    fn measure_zones_wrap_the_concrete() {
+        let geo = geometry();
+        let all = Measures::parse("all").unwrap();
+        assert_eq!(
+            all.suffix(),
+            "_reinforced_rock+upper_anchorage+isolation_layer"
+        );
+        assert_eq!(Measures::parse("bogus"), None);
+        let model = generate(&geo, &Variant::Ci.density(), &benches(), &all.zones()).unwrap();
+        let m = &model.mesh;
+        let region_of_face = |f: &crate::mesh::Face| {
+            m.region_names[m.element_region[f.element as usize] as usize].as_str()
+        };
+        let inner_side: Vec<&str> = m.face_sets["rock-inner"]
+            .iter()
+            .map(region_of_face)
+            .collect();
+        assert!(
+            inner_side.iter().all(|r| *r == "rock_isolation"),
+            "{inner_side:?}"
+        );
+        // Plain rock behind the lining: name the first such face's cell, its centre
+        // (cavern frame) and its distance to the excavation.
+        let plain: Vec<String> = m.face_sets["rock-lining"]
+            .iter()
+            .filter(|f| region_of_face(f) == "rock")
+            .map(|f| {
+                let x = m.element_coords(f.element as usize);
+                let c: [f64; 3] = std::array::from_fn(|d| {
+                    x.iter().map(|p| p[d]).sum::<f64>() / 8.0 - geo.origin[d]
+                });
+                let corners: Vec<[f64; 3]> = x
+                    .iter()
+                    .map(|p| std::array::from_fn(|d| p[d] - geo.origin[d]))
+                    .collect();
+                format!(
+                    "element {} face {} at {c:.2?} ({:.2} m from the excavation), corners {corners:.2?}",
+                    f.element,
+                    f.local,
+                    geo.distance_to_excavation(c[0], c[1], c[2])
+                )
+            })
+            .collect();
+        assert!(
+            plain.is_empty(),
+            "{} plain rock faces behind the lining, first {:?}",
+            plain.len(),
+            plain.first()
+        );
+    }
+
+    #[test]
+    fn timing_divides_the_frame_interval() {
+        let t = Timing::from_stable_step(1.3e-4);
+        let dt = t.dt.unwrap();
+        assert!(dt <= 1.3e-4);
+        assert!((dt * t.vtu_every as f64 - FRAME_INTERVAL).abs() < 1e-15);
+        assert_eq!(t.checkpoint_every, 50 * t.vtu_every);
     }
 }

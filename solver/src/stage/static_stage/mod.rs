@@ -217,6 +217,11 @@ pub fn run(mut model: Model, plan: &StaticPlan) -> Result<(Model, StaticResult)>
     // model on its own supports ([[static.fixed]]), so dashpots and springs stay out of
     // its equilibrium (the direct solve and the relaxation agree without them).
     let boundaries = model.boundaries.take();
+    // Anchor bars (yingxiuwan branch): not part of the static stage; they are installed in
+    // the static stage's final configuration when the dynamic stage starts
+    // (`start_dynamic`), so the excavation's displacements load them no more than the
+    // bolts that are grouted after it.
+    let anchors = model.anchors.take();
     let n = model.mesh.n_nodes();
     let dynamic_constraints: Constraints = model.constraints.clone();
     let mut act = Activation::new(&model);
@@ -350,6 +355,7 @@ pub fn run(mut model: Model, plan: &StaticPlan) -> Result<(Model, StaticResult)>
     result.history = history;
     result.active = act.active.clone();
     model.boundaries = boundaries;
+    model.anchors = anchors;
     Ok((model, result))
 }
 

@@ -124,6 +124,14 @@ pub fn start_dynamic(
     safety: f64,
 ) -> Result<Simulation> {
     add_hand_over_loads(&mut model, result);
+    // Anchor bars are installed now, in the static stage's final configuration.
+    // Their steel mass goes back onto the host nodes, whose masses the activation
+    // recomputed from the active elements.
+    if let Some(anchors) = model.anchors.as_mut() {
+        anchors.install_at(&model.mesh, &result.u);
+        anchors.add_host_masses(&model.mesh, &mut model.mass);
+        model.refresh_inverse_mass();
+    }
     let mut sim = Simulation::new(model, dt, safety)?;
     sim.u.copy_from_slice(&result.u);
     // Absorbing springs are measured from the static state.

@@ -211,6 +211,11 @@ impl CavernGeometry {
         if ax > a || !in_length {
             return Part::Rock;
         }
+        // Above the excavated crown (cells over the arch band, whose lines are flat): rock,
+        // the sidewall lining's column included.
+        if z > self.springline() && z > self.outer_arch(x) {
+            return Part::Rock;
+        }
         let floor_top = self.generator_floor_bottom + self.generator_floor;
         let wall = ax > a - self.lining;
         if z > floor_top {
@@ -305,5 +310,31 @@ impl CavernGeometry {
     /// thickness plus half a tunnel width.
     pub fn junction_reach(&self) -> f64 {
         self.tunnel_lining + 0.5 * self.tunnel_width
+    }
+}
+
+impl CavernGeometry {
+    /// Distance (m) from a point to the excavated volume, taken as the cavern's bounding
+    /// box (crown included) and the busbar tunnels' boxes (their linings included): 0
+    /// inside. Used for zones of the rock around the excavation.
+    pub fn distance_to_excavation(&self, x: f64, y: f64, z: f64) -> f64 {
+        let a = self.half_width();
+        let outside = |v: f64, lo: f64, hi: f64| (lo - v).max(v - hi).max(0.0);
+        let cavern = (outside(x, -a, a).powi(2)
+            + outside(y, 0.0, self.length).powi(2)
+            + outside(z, 0.0, self.height).powi(2))
+        .sqrt();
+        let zf = self.generator_floor_bottom;
+        let ztop = zf + self.generator_floor + self.tunnel_height + self.tunnel_lining;
+        let half = 0.5 * self.tunnel_width + self.tunnel_lining;
+        (0..self.units)
+            .map(|u| {
+                let c = self.unit_centre(u);
+                (outside(x, a, a + self.tunnel_length).powi(2)
+                    + outside(y, c - half, c + half).powi(2)
+                    + outside(z, zf, ztop).powi(2))
+                .sqrt()
+            })
+            .fold(cavern, f64::min)
     }
 }

@@ -18,6 +18,7 @@ pub mod section;
 use crate::error::Result;
 use crate::mesh::Mesh;
 
+pub use extrude::RockZones;
 pub use geometry::{CavernGeometry, Part};
 pub use quality::QualityReport;
 pub use section::Density;
@@ -31,10 +32,16 @@ pub struct CavernModel {
 }
 
 /// Generate the mesh of `geo` at `density`; `benches` are the lower levels of the
-/// excavation benches from the crown down (cavern frame; the last is the bottom bench).
-pub fn generate(geo: &CavernGeometry, density: &Density, benches: &[f64]) -> Result<CavernModel> {
+/// excavation benches from the crown down (cavern frame; the last is the bottom bench);
+/// `zones` the optional rock zones of the anti-seismic measures.
+pub fn generate(
+    geo: &CavernGeometry,
+    density: &Density,
+    benches: &[f64],
+    zones: &RockZones,
+) -> Result<CavernModel> {
     let lines = section::SectionLines::new(geo, density);
-    let mesh = extrude::build_mesh(geo, &lines, benches)?;
+    let mesh = extrude::build_mesh(geo, &lines, benches, zones)?;
     let quality = quality::quality(&mesh);
     Ok(CavernModel {
         mesh,

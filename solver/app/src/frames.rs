@@ -1,0 +1,240 @@
+//! Compact field frames (`[output.frames]`, docs/outputs.md): what a user needs every
+//! frame of a long run — the elements of some regions (the concrete of the Yingxiuwan
+//! case, whose nodes carry the contact fields of its interfaces) with displacement,
+//! velocity, contact fields, stress and damage in Float32, zlib-compressed
+//! ([`crate::output::write_vtu_compressed`]), and the anchor bars with their axial forces.
+//! The frames form the run's time series (`case.pvd`); the anchor frames their own
+//! (`anchors.pvd`). The run driver writes the whole mesh less often (`full.pvd`).
+
+use std::path::Path;
+
+use dcfm::case::FramesSection;
+use dcfm::error::Result;
+use dcfm::stage::Simulation;
+
+use crate::output::{write_vtu_compressed, write_vtu_lines, CellSubset, PvdCollection, VtuField};
+
+/// The compact frames of a run.
+pub struct CompactFrames {
+    subset: CellSubset,
+    region: Vec<f64>,
+    anchors: Option<PvdCollection>,
+    full: PvdCollection,
+    /// Steps between two frames of the whole mesh (0: first and last only).
+    pub full_every: u64,
+}
+
+impl CompactFrames {
+    /// The frames of `section` for the model of `sim` (its active elements in the listed
+    /// regions or sets). `resumed_at`: the time of the checkpoint a resumed run starts
+    /// from (later frames of the collections are dropped).
+    pub fn new(
+        section: &FramesSection,
+        sim: &Simulation,
+        out: &Path,
+        resumed_at: Option<f64>,
+    ) -> Result<Self> {
+        let mesh = &sim.model.mesh;
+        let mut wanted = vec![false; mesh.n_elements()];
+        for name in &section.regions {
+            if let Some(set) = mesh.element_sets.get(name) {
+                for &e in set {
+                    wanted[e as usize] = true;
+                }
+            }
+            if let Some(r) = mesh.region_index(name) {
+                for (e, &er) in mesh.element_region.iter().enumerate() {
+                    if er as usize == r {
+                        wanted[e] = true;
+                    }
+                }
+            }
+        }
+        let mut selected = Vec::new();
+        let mut region_of = vec![f64::NAN; mesh.n_elements()];
+        for g in &sim.model.groups {
+            for &e in &g.elements {
+                region_of[e as usize] = g.region as f64;
+                if wanted[e as usize] {
+                    selected.push(e);
+                }
+            }
+        }
+        selected.sort_unstable();
+        let subset = CellSubset::new(&mesh.coords, &mesh.elements, &selected);
+        let region = selected.iter().map(|&e| region_of[e as usize]).collect();
+        let open = |name: &str| -> Result<PvdCollection> {
+            let path = out.join(name);
+            match resumed_at {
+                Some(t) => {
+                    let mut p = PvdCollection::resume(&path)?;
+                    p.truncate_after(t)?;
+                    Ok(p)
+                }
+                None => PvdCollection::create(&path),
+            }
+        };
+        let anchors = match (&sim.model.anchors, section.anchors) {
+            (Some(a), true) if !a.is_empty() => Some(open("anchors.pvd")?),
+            _ => None,
+        };
+        Ok(Self {
+            subset,
+            region,
+            anchors,
+            full: open("full.pvd")?,
+            full_every: section.full_every,
+        })
+    }
+
+    /// Number of cells in every frame.
+    pub fn cells(&self) -> usize {
+        self.subset.cells.len()
+    }
+
+    /// The collection of the whole-mesh frames.
+    pub fn full_collection(&mut self) -> &mut PvdCollection {
+        &mut self.full
+    }
+
+    /// Whether the whole mesh is due at `step` (`last`: the run's last step).
+    pub fn full_due(&self, step: u64, first: bool, last: bool) -> bool {
+        first || last || (self.full_every > 0 && step.is_multiple_of(self.full_every))
+    }
+
+    /// Write the frame of the current state into `out` and add it to `pvd`.
+    pub fn write(&mut self, sim: &Simulation, out: &Path, pvd: &mut PvdCollection) -> Result<()> {
+        let model = &sim.model;
+        let s = &self.subset;
+        let ne = model.n_elements();
+        let mut stress = vec![0.0; 6 * ne];
+        let mut damage = vec![0.0; 3 * ne];
+        for g in &model.groups {
+            if !g
+                .elements
+                .iter()
+                .any(|&e| s.elements.binary_search(&e).is_ok())
+            {
+                continue;
+            }
+            let ss = g.element_strain_stress(&sim.u);
+            let dmg = g.element_damage_fields();
+            for (le, &e) in g.elements.iter().enumerate() {
+                let e = e as usize;
+                stress[6 * e..6 * e + 6].copy_from_slice(&ss[le].1);
+                if let Some(d) = &dmg {
+                    damage[3 * e..3 * e + 3].copy_from_slice(&d[le][..3]);
+                }
+            }
+        }
+        let flat = |f: &[[f64; 3]]| -> Vec<f64> {
+            s.nodes
+                .iter()
+                .flat_map(|&n| f[n as usize].iter().copied())
+                .collect()
+        };
+        let (u, v) = (flat(&sim.u), flat(&sim.v));
+        let contact: Vec<(String, usize, Vec<f64>)> = model
+            .contact
+            .as_ref()
+            .map(|c| {
+                c.node_fields(model.mesh.n_nodes())
+                    .into_iter()
+                    .map(|(name, k, values)| (name, k, s.gather_points(&values, k)))
+                    .collect()
+            })
+            .unwrap_or_default();
+        let mut point_fields = vec![
+            VtuField {
+                name: "displacement",
+                components: 3,
+                values: &u,
+            },
+            VtuField {
+                name: "velocity",
+                components: 3,
+                values: &v,
+            },
+        ];
+        for (name, k, values) in &contact {
+            point_fields.push(VtuField {
+                name,
+                components: *k,
+                values,
+            });
+        }
+        let pick = |k: usize| -> Vec<f64> {
+            s.elements
+                .iter()
+                .map(|&e| damage[3 * e as usize + k])
+                .collect()
+        };
+        let (d, dt, dc) = (pick(0), pick(1), pick(2));
+        let stress = s.gather_cells(&stress, 6);
+        let ids: Vec<f64> = s.elements.iter().map(|&e| e as f64).collect();
+        let name = format!("frame_{:06}.vtu", sim.step);
+        write_vtu_compressed(
+            &out.join(&name),
+            &s.coords,
+            &s.cells,
+            &point_fields,
+            &[
+                VtuField {
+                    name: "damage",
+                    components: 1,
+                    values: &d,
+                },
+                VtuField {
+                    name: "damage_tension",
+                    components: 1,
+                    values: &dt,
+                },
+                VtuField {
+                    name: "damage_compression",
+                    components: 1,
+                    values: &dc,
+                },
+                VtuField {
+                    name: "stress",
+                    components: 6,
+                    values: &stress,
+                },
+                VtuField {
+                    name: "region",
+                    components: 1,
+                    values: &self.region,
+                },
+                VtuField {
+                    name: "element_id",
+                    components: 1,
+                    values: &ids,
+                },
+            ],
+        )?;
+        pvd.add(sim.time, &name)?;
+        if let (Some(apvd), Some(a)) = (self.anchors.as_mut(), model.anchors.as_ref()) {
+            let lines = a.lines();
+            let name = format!("anchors_{:06}.vtu", sim.step);
+            write_vtu_lines(
+                &out.join(&name),
+                &lines.points,
+                &lines.lines,
+                &[],
+                &[
+                    VtuField {
+                        name: "axial_force",
+                        components: 1,
+                        values: &lines.force,
+                    },
+                    VtuField {
+                        name: "bar",
+                        components: 1,
+                        values: &lines.bar,
+                    },
+                ],
+            )?;
+            apvd.add(sim.time, &name)?;
+        }
+        Ok(())
+    }
+}

@@ -267,7 +267,8 @@ impl Model {
     }
 
     /// α of every node when regions differ in α: Σ_e α_e M_e,a / M_a (the nodal mass
-    /// proportional damping of C = Σ_e α_e M_e); `None` when every region has the same α.
+    /// proportional damping of C = Σ_e α_e M_e), 0 at a node without mass; `None` when
+    /// every region has the same α.
     pub fn node_alpha(&self) -> Option<Vec<f64>> {
         let uniform =
             (0..self.groups.len()).all(|g| self.group_damping(g).alpha == self.damping.alpha);
@@ -288,7 +289,14 @@ impl Model {
                 }
             }
         }
-        Some(am.iter().zip(&self.mass).map(|(a, m)| a / m).collect())
+        // A node of no active element (dormant after an excavation) has no mass and no
+        // damping: 0, not 0/0.
+        Some(
+            am.iter()
+                .zip(&self.mass)
+                .map(|(a, &m)| if m > 0.0 { a / m } else { 0.0 })
+                .collect(),
+        )
     }
 
     /// Material of global element `e`.

@@ -345,3 +345,45 @@ fn dynamic_steps_after_a_k0_stage_do_not_depend_on_threads() {
     assert_eq!(a.0, b.0);
     assert_eq!(a.1, b.1);
 }
+
+/// Regions with different Rayleigh α (so the nodes carry their own α) and an excavation
+/// that leaves nodes without any active element (dormant, no mass): the dynamic stage's
+/// damping work and energy balance stay finite. The nodal α was Σ α_e M_e,a / M_a = 0/0 at
+/// the dormant nodes, which made the damping and input work NaN from the first step.
+#[test]
+fn damping_energy_is_finite_with_dormant_nodes_and_regional_damping() {
+    let text = CASE
+        .replace(
+            "name = \"rock\"\nmaterial = \"rock\"\nintegration = \"full\"",
+            "name = \"rock\"\nmaterial = \"rock\"\nintegration = \"full\"\ndamping = { alpha = 0.6 }",
+        )
+        .replace(
+            "name = \"lining\"\nactivate = [\"lining\"]",
+            "name = \"lining\"\nexcavate = [\"lining\"]",
+        );
+    let case = parse_case(&text, "case.toml", Path::new(".")).unwrap();
+    let plan = case.static_plan.clone().unwrap();
+    let (model, r) = static_stage::run(case.model, &plan).unwrap();
+    assert!(model.mass.contains(&0.0), "no dormant node");
+    let mut sim = static_stage::start_dynamic(model, &r, case.dt, case.safety).unwrap();
+    // A kick on the free x DOFs of the nodes with mass.
+    for i in 0..sim.v.len() {
+        if sim.model.mass[i] > 0.0 && sim.model.constraints.constrained[i] & 1 == 0 {
+            sim.v[i][0] += 0.01;
+        }
+    }
+    sim.restart_energy_account();
+    sim.run_steps(200).unwrap();
+    let e = &sim.energies;
+    assert!(
+        e.damping.is_finite() && e.damping > 0.0,
+        "damping work {}",
+        e.damping
+    );
+    assert!(e.input.is_finite(), "input work {}", e.input);
+    let rel = e.relative_residual();
+    assert!(
+        rel.is_finite() && rel < 1e-3,
+        "relative energy residual {rel}"
+    );
+}

@@ -236,20 +236,7 @@ fn write_body<W: Write>(
     write!(w, "  <AppendedData encoding=\"base64\">\n   _")?;
 
     let mut b = Base64Writer::new(w);
-    for f in point_fields.iter().chain(cell_fields) {
-        b.put(&(8 * f.values.len() as u64).to_le_bytes())?;
-        for v in f.values {
-            b.put(&v.to_le_bytes())?;
-        }
-        b.end_array()?;
-    }
-    b.put(&(24 * coords.len() as u64).to_le_bytes())?;
-    for p in coords {
-        for v in p {
-            b.put(&v.to_le_bytes())?;
-        }
-    }
-    b.end_array()?;
+    put_fields_and_points(&mut b, point_fields, cell_fields, coords)?;
     let index_bytes = |b: &mut Base64Writer<W>, v: u64| match index {
         IndexType::Int32 => b.put(&(v as i32).to_le_bytes()),
         IndexType::Int64 => b.put(&(v as i64).to_le_bytes()),
@@ -278,6 +265,30 @@ fn write_body<W: Write>(
 }
 
 const B64: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+
+/// The appended arrays every writer starts with, in header order: the point fields, the
+/// cell fields, then the points (each array: its byte count, then little-endian Float64).
+fn put_fields_and_points<W: Write>(
+    b: &mut Base64Writer<'_, W>,
+    point_fields: &[VtuField],
+    cell_fields: &[VtuField],
+    points: &[[f64; 3]],
+) -> io::Result<()> {
+    for f in point_fields.iter().chain(cell_fields) {
+        b.put(&(8 * f.values.len() as u64).to_le_bytes())?;
+        for v in f.values {
+            b.put(&v.to_le_bytes())?;
+        }
+        b.end_array()?;
+    }
+    b.put(&(24 * points.len() as u64).to_le_bytes())?;
+    for p in points {
+        for v in p {
+            b.put(&v.to_le_bytes())?;
+        }
+    }
+    b.end_array()
+}
 
 /// Streaming base64 encoder: bytes in, characters out in 64 KiB chunks; `end_array` pads
 /// the current array so the next one starts on its own 4-character group.
@@ -643,20 +654,7 @@ pub fn write_vtu_lines(
         writeln!(w, "      </Cells>\n    </Piece>\n  </UnstructuredGrid>")?;
         write!(w, "  <AppendedData encoding=\"base64\">\n   _")?;
         let mut b = Base64Writer::new(w);
-        for f in point_fields.iter().chain(cell_fields) {
-            b.put(&(8 * f.values.len() as u64).to_le_bytes())?;
-            for v in f.values {
-                b.put(&v.to_le_bytes())?;
-            }
-            b.end_array()?;
-        }
-        b.put(&(24 * points.len() as u64).to_le_bytes())?;
-        for p in points {
-            for v in p {
-                b.put(&v.to_le_bytes())?;
-            }
-        }
-        b.end_array()?;
+        put_fields_and_points(&mut b, point_fields, cell_fields, points)?;
         b.put(&(16 * n).to_le_bytes())?;
         for l in lines {
             for &a in l {

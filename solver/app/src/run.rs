@@ -79,6 +79,8 @@ struct HistoryColumns {
     volumes: Vec<Vec<f64>>,
     /// Number of contact interfaces.
     interfaces: usize,
+    /// Anchor segments' history groups, resolved once.
+    anchors: Option<dcfm::element::anchor_bar::AnchorHistoryLayout>,
 }
 
 /// Names of the columns of a node probe's contact record (`ContactSystem::node_record`).
@@ -132,6 +134,7 @@ impl HistoryColumns {
                 .contact
                 .as_ref()
                 .map_or(0, |c| c.interface_names().len()),
+            anchors: model.anchors.as_ref().map(|a| a.history_layout()),
         }
     }
 
@@ -231,8 +234,8 @@ impl HistoryColumns {
             let per_element = output.damaged_volume == dcfm::case::DamagedVolumeMeasure::Element;
             row.extend(g.damaged_volume(output.damage_threshold, per_element));
         }
-        if let Some(a) = &sim.model.anchors {
-            a.history_values(row);
+        if let (Some(a), Some(layout)) = (&sim.model.anchors, &self.anchors) {
+            a.history_values(layout, row);
         }
         if let Some(c) = &sim.model.contact {
             for k in 0..self.interfaces {

@@ -160,6 +160,14 @@ pub struct BarInfo {
     pub end: [f64; 3],
 }
 
+/// Which history group every anchor segment belongs to ([`AnchorBars::history_layout`]).
+#[derive(Clone, Debug, Default)]
+pub struct AnchorHistoryLayout {
+    groups: usize,
+    segment_group: Vec<u32>,
+    segment_yield: Vec<f64>,
+}
+
 /// All the anchor bars of a model with their state.
 #[derive(Clone, Debug, Default)]
 pub struct AnchorBars {
@@ -541,21 +549,45 @@ impl AnchorBars {
         out
     }
 
-    /// Append the history values to `row`.
-    pub fn history_values(&self, row: &mut Vec<f64>) {
+    /// The group of every segment in the state arrays, worked out once before the step
+    /// loop so that [`AnchorBars::history_values`] allocates nothing.
+    pub fn history_layout(&self) -> AnchorHistoryLayout {
+        let groups = self.groups();
         let bars = self.segment_bars();
-        for g in self.groups() {
+        let segment_group = bars
+            .iter()
+            .map(|&b| {
+                let name = &self.bars[b as usize].group;
+                groups.iter().position(|g| g == name).unwrap_or(0) as u32
+            })
+            .collect();
+        let segment_yield = bars
+            .iter()
+            .map(|&b| self.bars[b as usize].yield_force)
+            .collect();
+        AnchorHistoryLayout {
+            groups: groups.len(),
+            segment_group,
+            segment_yield,
+        }
+    }
+
+    /// Append the history values to `row`, in the order of
+    /// [`AnchorBars::history_names`].
+    pub fn history_values(&self, layout: &AnchorHistoryLayout, row: &mut Vec<f64>) {
+        for g in 0..layout.groups as u32 {
             let mut max = 0.0f64;
             let mut yielded = 0usize;
-            for (k, &b) in bars.iter().enumerate() {
-                let info = &self.bars[b as usize];
-                if info.group != g {
-                    continue;
-                }
+            for (k, _) in layout
+                .segment_group
+                .iter()
+                .enumerate()
+                .filter(|(_, &sg)| sg == g)
+            {
                 max = max.max(self.force[k]);
                 yielded += usize::from(
                     self.plastic[k] != 0.0
-                        && self.force[k].abs() >= info.yield_force * (1.0 - 1e-12),
+                        && self.force[k].abs() >= layout.segment_yield[k] * (1.0 - 1e-12),
                 );
             }
             row.push(max);

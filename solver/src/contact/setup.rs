@@ -310,6 +310,7 @@ pub(super) fn build_interface(
             gap_start: 0.0,
             active: true,
             rel0: [0.0; 3],
+            junction: false,
         });
     }
     match spec.mode {
@@ -343,6 +344,7 @@ pub(super) fn build_interface(
         snapshot: Vec::new(),
         prev_force: Vec::new(),
         slave_index,
+        outer_prev: Vec::new(),
     })
 }
 

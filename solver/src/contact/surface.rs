@@ -46,17 +46,17 @@ use faer::prelude::*;
 use faer::sparse::{SparseColMat, Triplet};
 
 use super::geom::{
-    add, axpy, dot, face_normal, face_point, face_shape, norm, project_on_face, scale, sub,
-    tangential,
+    add, axpy, dot, face_normal, face_point, face_shape, norm, scale, sub, tangential,
 };
 use super::pair::{solve_pair, PairInput, PairParams};
+use super::search::{FaceGrid, FaceHit};
 use super::{ContactStepInput, Interface, PairState, NONE};
 use crate::error::{DcfmError, Result};
 
 /// Reusable buffers of the point-to-surface solve.
 #[derive(Clone, Debug, Default)]
 pub struct Scratch {
-    grid: HashMap<[i64; 3], Vec<u32>>,
+    grid: FaceGrid,
     active: Vec<Active>,
     h: Vec<(usize, usize, f64)>,
     by_master: Vec<(u32, usize, f64)>,
@@ -148,22 +148,6 @@ pub fn solve_group(
 #[inline]
 pub fn distribute(phi: &[f64; 4], r: [f64; 3]) -> [[f64; 3]; 4] {
     phi.map(|p| scale(-p, r))
-}
-
-/// Whether the closest point found by [`project_on_face`] is a contact candidate: within
-/// `capture` and, when it was clamped to an edge, with an in-plane offset of at most
-/// `edge_tol` (so that a node that has slid off the edge of surface b is free).
-#[inline]
-fn accept(x: &[[f64; 3]; 4], p: [f64; 3], xi: f64, eta: f64, capture: f64, edge_tol: f64) -> bool {
-    let (q, _, _) = face_point(x, xi, eta);
-    let d = sub(p, q);
-    if norm(d) > capture {
-        return false;
-    }
-    match face_normal(x, xi, eta) {
-        Some(nb) => norm(tangential(d, nb)) <= edge_tol,
-        None => false,
-    }
 }
 
 fn new_active(
@@ -558,10 +542,6 @@ fn active_set(
     ))
 }
 
-fn cell(x: [f64; 3], h: f64) -> [i64; 3] {
-    x.map(|c| (c / h).floor() as i64)
-}
-
 /// Point-to-surface contact of every node of `iface` in that mode, for one step.
 pub(super) fn solve(
     iface: &mut Interface,
@@ -576,35 +556,10 @@ pub(super) fn solve(
         let k = k as usize;
         add(inp.coords[k], inp.u_old[k])
     };
-    // Grid of the faces of b over the configuration at tⁿ; cells of the largest face size.
-    let mut hmax: f64 = 0.0;
-    for f in &iface.b_faces {
-        let x = f.map(cur);
-        hmax = hmax.max(norm(sub(x[2], x[0]))).max(norm(sub(x[3], x[1])));
-    }
-    let hcell = hmax.max(iface.b_face_size).max(f64::MIN_POSITIVE);
-    let capture = 0.5 * hcell;
-    let edge_tol = 1e-2 * hcell;
-    for list in s.grid.values_mut() {
-        list.clear();
-    }
-    for (fi, f) in iface.b_faces.iter().enumerate() {
-        if !iface.b_face_active[fi] {
-            continue;
-        }
-        let x = f.map(cur);
-        let lo = [0, 1, 2].map(|d| x.iter().map(|q| q[d]).fold(f64::INFINITY, f64::min) - capture);
-        let hi =
-            [0, 1, 2].map(|d| x.iter().map(|q| q[d]).fold(f64::NEG_INFINITY, f64::max) + capture);
-        let (c0, c1) = (cell(lo, hcell), cell(hi, hcell));
-        for i in c0[0]..=c1[0] {
-            for j in c0[1]..=c1[1] {
-                for k in c0[2]..=c1[2] {
-                    s.grid.entry([i, j, k]).or_default().push(fi as u32);
-                }
-            }
-        }
-    }
+    // The faces of b binned over the configuration at tⁿ (`search.rs`).
+    s.grid
+        .rebuild(&iface.b_faces, &iface.b_face_active, iface.b_face_size, cur);
+    let capture = s.grid.capture();
     // Closest facing face for each node in point-to-surface contact.
     for (si, sl) in iface.slaves.iter_mut().enumerate() {
         if !sl.surface || !sl.active {
@@ -613,23 +568,8 @@ pub(super) fn solve(
         // The node's position with its activation offset δ₀ (zero unless it was placed
         // against a surface that had already moved).
         let p = add(cur(sl.node), sl.rel0);
-        let mut best: Option<(f64, u32, f64, f64)> = None;
-        if let Some(list) = s.grid.get(&cell(p, hcell)) {
-            for &fi in list {
-                let x = iface.b_faces[fi as usize].map(cur);
-                let (xi, eta, dist) = project_on_face(&x, p);
-                if best.is_some_and(|(bd, _, _, _)| dist >= bd)
-                    || !accept(&x, p, xi, eta, capture, edge_tol)
-                {
-                    continue;
-                }
-                match face_normal(&x, xi, eta) {
-                    Some(nb) if dot(nb, sl.normal) < 0.0 => best = Some((dist, fi, xi, eta)),
-                    _ => {}
-                }
-            }
-        }
-        let Some((_, fi, xi, eta)) = best else {
+        let Some(FaceHit { face: fi, xi, eta }) = s.grid.closest(p, sl.normal, &iface.b_faces, cur)
+        else {
             sl.face = NONE;
             sl.state = PairState::Separated;
             sl.gap = capture;

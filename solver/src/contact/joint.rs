@@ -1,0 +1,150 @@
+//! Interfaces that meet, solved jointly.
+//!
+//! A node may belong to several interfaces: at a cavern junction the lining, the inner
+//! structure and the rock meet at one edge, whose three coincident nodes form three pairs
+//! on three interfaces (lining–rock, inner–rock, lining–inner). Solving the interfaces one
+//! after the other leaves every interface but the last inconsistent: the pair solved last
+//! moves a node that an earlier pair had already brought to its contact law (eqs. (6)–(15)),
+//! so bonded pairs drift apart or into each other step by step.
+//!
+//! Interfaces that share a node form a group ([`group_interfaces`], at set-up). A group is
+//! solved by block Gauss–Seidel over its interfaces: each sweep solves every interface with
+//! the latest forces of the others in the predictor (its own forces of the previous sweep
+//! taken back and its records restored to the start of the step, keeping what the step has
+//! learnt: a pair that slid keeps μd, a broken bond stays broken), until no force of the
+//! group changes by more than 1e-12 of the largest. After the first sweep only the pairs at
+//! a junction (node or partner on another interface) and the point-to-surface parts can
+//! change; the other pairs are not solved again. At convergence every pair and
+//! point-to-surface node satisfies its contact law with the forces of all the others, as
+//! in one coupled system: for sticking pairs the sweeps are alternating projections onto
+//! the pairs' constraints in the mass metric, which converge linearly when the constraints
+//! are consistent. Switches to point-to-surface contact (large slip) are applied after
+//! convergence. No settling within the sweep limit is an error naming the interfaces.
+
+use super::{apply_switches, begin_step, restart, ContactStepInput, ContactSystem, Interface};
+use super::{geom::norm, geom::sub, NONE};
+use crate::error::{DcfmError, Result};
+
+/// Most sweeps of a group's joint solve.
+const MAX_SWEEPS: usize = 2000;
+
+/// Groups of interfaces that share nodes (each sorted, groups ordered by their first
+/// interface), and the `junction` flag of every slave record whose node or partner is on
+/// another interface. `n_nodes` bounds every node number.
+pub(super) fn group_interfaces(interfaces: &mut [Interface], n_nodes: usize) -> Vec<Vec<usize>> {
+    let m = interfaces.len();
+    let mut parent: Vec<usize> = (0..m).collect();
+    fn root(parent: &mut [usize], mut k: usize) -> usize {
+        while parent[k] != k {
+            parent[k] = parent[parent[k]];
+            k = parent[k];
+        }
+        k
+    }
+    // Distinct interfaces per node (saturating at 2) and the first interface of each node.
+    let mut count = vec![0u8; n_nodes];
+    let mut last = vec![usize::MAX; n_nodes];
+    for (k, iface) in interfaces.iter().enumerate() {
+        let nodes = iface
+            .slaves
+            .iter()
+            .flat_map(|s| [s.node, s.partner])
+            .chain(iface.b_faces.iter().flatten().copied())
+            .filter(|&n| n != NONE && (n as usize) < n_nodes);
+        for node in nodes {
+            let i = node as usize;
+            if last[i] == k {
+                continue;
+            }
+            if last[i] != usize::MAX {
+                let (a, b) = (root(&mut parent, last[i]), root(&mut parent, k));
+                parent[a.max(b)] = a.min(b);
+            }
+            last[i] = k;
+            count[i] = count[i].saturating_add(1).min(2);
+        }
+    }
+    let shared = |n: u32| n != NONE && (n as usize) < n_nodes && count[n as usize] > 1;
+    for iface in interfaces.iter_mut() {
+        for s in iface.slaves.iter_mut() {
+            s.junction = shared(s.node) || shared(s.partner);
+        }
+    }
+    let mut groups: Vec<Vec<usize>> = Vec::new();
+    let mut group_of_root = vec![usize::MAX; m];
+    for k in 0..m {
+        let r = root(&mut parent, k);
+        if group_of_root[r] == usize::MAX {
+            group_of_root[r] = groups.len();
+            groups.push(Vec::new());
+        }
+        groups[group_of_root[r]].push(k);
+    }
+    groups
+}
+
+impl ContactSystem {
+    /// One step of a group of interfaces that share nodes (`members`, indices into
+    /// `interfaces`): block Gauss–Seidel until the forces of the whole group agree.
+    pub(super) fn joint_step(
+        &mut self,
+        interfaces: &mut [Interface],
+        members: &[usize],
+        inp: &ContactStepInput,
+        r: &mut [[f64; 3]],
+    ) -> Result<()> {
+        for &k in members {
+            let iface = &mut interfaces[k];
+            begin_step(iface);
+            iface.snapshot.clone_from(&iface.slaves);
+            iface.outer_prev.clear();
+            iface.outer_prev.resize(iface.slaves.len(), [0.0; 3]);
+        }
+        let mut change: f64 = 0.0;
+        for sweep in 0..MAX_SWEEPS {
+            for &k in members {
+                let iface = &mut interfaces[k];
+                if sweep == 0 {
+                    self.interface_step(iface, inp, r)?;
+                } else if iface.slaves.iter().any(|s| s.surface && s.active) {
+                    // The point-to-surface system couples the whole interface.
+                    restart(iface, r, false, false);
+                    restart(iface, r, true, false);
+                    self.interface_step(iface, inp, r)?;
+                } else {
+                    restart(iface, r, false, true);
+                    self.point_to_point(iface, inp, r, true);
+                }
+            }
+            change = 0.0;
+            let mut fmax: f64 = 0.0;
+            for &k in members {
+                let iface = &mut interfaces[k];
+                for (s, prev) in iface.slaves.iter().zip(iface.outer_prev.iter_mut()) {
+                    change = change.max(norm(sub(s.force, *prev)));
+                    fmax = fmax.max(norm(s.force));
+                    *prev = s.force;
+                }
+            }
+            change /= fmax.max(f64::MIN_POSITIVE);
+            if sweep > 0 && change <= 1e-12 {
+                for &k in members {
+                    apply_switches(&mut interfaces[k]);
+                }
+                return Ok(());
+            }
+        }
+        let names: Vec<&str> = members
+            .iter()
+            .map(|&k| interfaces[k].name.as_str())
+            .collect();
+        Err(DcfmError::Contact {
+            interface: names.join(" + "),
+            message: format!(
+                "step {} (t = {:.6e} s): the interfaces that meet at shared nodes did not \
+                 settle jointly in {MAX_SWEEPS} sweeps (last relative force change {change:.3e})",
+                inp.step, inp.time
+            ),
+        })
+    }
+}

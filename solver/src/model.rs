@@ -47,20 +47,16 @@ pub struct StableStep {
     pub speed: f64,
 }
 
-/// The critical step of the mesh: per element min(L_e/c_p, 2/ω_max,e), the eigenvalue
-/// computed once per distinct element shape (structured meshes repeat a few shapes).
-fn stable_step(
+/// The own step of every element of the mesh, min(L_e/c_p, 2/ω_max,e) (global element
+/// order), the eigenvalue computed once per distinct element shape (structured meshes
+/// repeat a few shapes).
+fn element_steps(
     mesh: &Mesh,
     groups: &[ElementGroup],
     regions: &[RegionSetup],
-) -> Result<StableStep> {
+) -> Result<Vec<f64>> {
     use crate::element::stable_step::element_max_eigenvalue;
-    let mut stable = StableStep {
-        critical: f64::INFINITY,
-        element: 0,
-        length: 0.0,
-        speed: 0.0,
-    };
+    let mut steps = vec![f64::INFINITY; mesh.n_elements()];
     for g in groups {
         let c = g.material.elastic().p_wave_speed();
         let hourglass = regions
@@ -88,19 +84,10 @@ fn stable_step(
                     w
                 }
             };
-            let dt = (l / c).min(2.0 / omega2.sqrt());
-            if dt < stable.critical {
-                // The length that gives this step at the P-wave speed.
-                stable = StableStep {
-                    critical: dt,
-                    element: e,
-                    length: dt * c,
-                    speed: c,
-                };
-            }
+            steps[e] = (l / c).min(2.0 / omega2.sqrt());
         }
     }
-    Ok(stable)
+    Ok(steps)
 }
 
 /// The model.
@@ -131,6 +118,16 @@ pub struct Model {
     pub boundaries: Option<crate::boundary::BoundarySystem>,
     /// Anchor bars superposed on their host elements, if any.
     pub anchors: Option<crate::element::anchor_bar::AnchorBars>,
+    /// Own step min(L_e/c_p, 2/ω_max,e) of every element (s), global element order: what
+    /// [`Model::refresh_stable_step`] takes the minimum of.
+    pub element_steps: Vec<f64>,
+    /// Stiffness added on top of the elements (anchor bars), as a bound on its ω²
+    /// (`Model::include_extra_stiffness`), folded into `stable` whenever it is recomputed.
+    pub extra_omega_squared: f64,
+    /// Region names in the order of the case's `[[regions]]` (the order of the setups
+    /// given to [`Model::new`]): the numbering of the `region` field of the outputs
+    /// (`Model::region_number`), whose names the VTU files carry (docs/outputs.md).
+    pub region_names: Vec<String>,
 }
 
 impl Model {
@@ -195,7 +192,7 @@ impl Model {
                 "node {n} belongs to no element (zero mass)"
             )));
         }
-        let stable = stable_step(&mesh, &groups, regions)?;
+        let element_steps = element_steps(&mesh, &groups, regions)?;
         let mut element_location = vec![(0, 0); mesh.n_elements()];
         for (gi, g) in groups.iter().enumerate() {
             for (le, &e) in g.elements.iter().enumerate() {
@@ -203,7 +200,14 @@ impl Model {
             }
         }
         let n = mesh.n_nodes();
-        Ok(Self {
+        let mut region_names: Vec<String> = Vec::with_capacity(regions.len());
+        for s in regions {
+            if !region_names.contains(&s.region) {
+                region_names.push(s.region.clone());
+            }
+        }
+        let mut model = Self {
+            region_names,
             contact: None,
             boundaries: None,
             anchors: None,
@@ -219,8 +223,82 @@ impl Model {
             damping: Rayleigh::default(),
             region_damping: std::collections::BTreeMap::new(),
             initial_velocity: Vec::new(),
-            stable,
-        })
+            stable: StableStep {
+                critical: f64::INFINITY,
+                element: 0,
+                length: 0.0,
+                speed: 0.0,
+            },
+            element_steps,
+            extra_omega_squared: 0.0,
+        };
+        model.refresh_stable_step();
+        Ok(model)
+    }
+
+    /// Whether every node of element `e` has all three DOFs fixed or prescribed: such an
+    /// element (a driven base, a belt) moves as it is told, its stiffness acts only
+    /// between constrained DOFs and it has no dynamics of its own.
+    pub fn element_fully_prescribed(&self, e: usize) -> bool {
+        self.mesh.elements[e]
+            .iter()
+            .all(|&n| self.constraints.constrained[n as usize] & 0b111 == 0b111)
+    }
+
+    /// Recompute the stable step from the elements that move, once the constraints are
+    /// known: the minimum of the elements' own steps over the elements of the groups with
+    /// at least one free DOF — a fully prescribed element
+    /// ([`Model::element_fully_prescribed`]) adds no stiffness to the equations of the
+    /// free DOFs and does not shrink the step; a partly prescribed one keeps its own step
+    /// (its stiffness on the free DOFs is a principal submatrix of its stiffness, whose
+    /// largest eigenvalue is at most the element's). When every element is fully
+    /// prescribed the minimum over all of them is kept. The anchors' stiffness
+    /// (`extra_omega_squared`) is folded in afterwards.
+    pub fn refresh_stable_step(&mut self) {
+        self.stable = self.stable_step_now();
+    }
+
+    /// The stable step of [`Model::refresh_stable_step`] for the current constraints and
+    /// groups, without storing it (a stage with its own supports, the static relaxation).
+    pub fn stable_step_now(&self) -> StableStep {
+        let pick = |skip_prescribed: bool| -> StableStep {
+            let mut stable = StableStep {
+                critical: f64::INFINITY,
+                element: 0,
+                length: 0.0,
+                speed: 0.0,
+            };
+            for g in &self.groups {
+                let c = g.material.elastic().p_wave_speed();
+                for &e in &g.elements {
+                    let e = e as usize;
+                    let dt = self.element_steps[e];
+                    if dt < stable.critical
+                        && !(skip_prescribed && self.element_fully_prescribed(e))
+                    {
+                        // The length that gives this step at the P-wave speed.
+                        stable = StableStep {
+                            critical: dt,
+                            element: e,
+                            length: dt * c,
+                            speed: c,
+                        };
+                    }
+                }
+            }
+            stable
+        };
+        let mut stable = pick(true);
+        if !stable.critical.is_finite() {
+            stable = pick(false);
+        }
+        let extra = self.extra_omega_squared;
+        if extra > 0.0 {
+            let w = 2.0 / stable.critical;
+            stable.critical = 2.0 / (w * w + extra).sqrt();
+            stable.length = stable.critical * stable.speed;
+        }
+        stable
     }
 
     /// Recompute `inv_mass` after constraints change: 0 where all DOFs are constrained.
@@ -232,6 +310,16 @@ impl Model {
                 1.0 / self.mass[i]
             };
         }
+    }
+
+    /// Number of element group `g`'s region in [`Model::region_names`] (the `[[regions]]`
+    /// order), what the outputs' `region` field holds.
+    pub fn region_number(&self, g: usize) -> usize {
+        let name = &self.groups[g].name;
+        self.region_names
+            .iter()
+            .position(|r| r == name)
+            .unwrap_or(self.groups[g].region)
     }
 
     /// Volume-averaged (strain, stress) of global element `e` for displacements `u`.
@@ -376,9 +464,8 @@ impl Model {
     /// the step becomes 2/√((2/Δt)² + ω²_extra).
     pub fn include_extra_stiffness(&mut self, omega_squared: f64) {
         if omega_squared > 0.0 && omega_squared.is_finite() {
-            let w = 2.0 / self.stable.critical;
-            self.stable.critical = 2.0 / (w * w + omega_squared).sqrt();
-            self.stable.length = self.stable.critical * self.stable.speed;
+            self.extra_omega_squared += omega_squared;
+            self.refresh_stable_step();
         }
     }
 

@@ -12,7 +12,9 @@ use dcfm::case::FramesSection;
 use dcfm::error::Result;
 use dcfm::stage::Simulation;
 
-use crate::output::{write_vtu_compressed, write_vtu_lines, CellSubset, PvdCollection, VtuField};
+use crate::output::{
+    write_vtu_compressed, write_vtu_lines, CellSubset, PvdCollection, VtuField, VtuStrings,
+};
 
 /// The compact frames of a run.
 pub struct CompactFrames {
@@ -52,9 +54,10 @@ impl CompactFrames {
         }
         let mut selected = Vec::new();
         let mut region_of = vec![f64::NAN; mesh.n_elements()];
-        for g in &sim.model.groups {
+        for (gi, g) in sim.model.groups.iter().enumerate() {
+            let number = sim.model.region_number(gi) as f64;
             for &e in &g.elements {
-                region_of[e as usize] = g.region as f64;
+                region_of[e as usize] = number;
                 if wanted[e as usize] {
                     selected.push(e);
                 }
@@ -210,6 +213,10 @@ impl CompactFrames {
                     values: &ids,
                 },
             ],
+            &[VtuStrings {
+                name: "region_names",
+                values: &model.region_names,
+            }],
         )?;
         pvd.add(sim.time, &name)?;
         if let (Some(apvd), Some(a)) = (self.anchors.as_mut(), model.anchors.as_ref()) {

@@ -146,19 +146,42 @@ fn main() -> ExitCode {
                     );
                 }
                 say!(
-                    "stable    critical Δt = {:.4e} s (element {}, L = {:.4e} m, c_p = {:.1} m/s); with damping {:.4e} s",
+                    "stable    critical Δt = {:.4e} s (element {} in region '{}', L = {:.4e} m, c_p = {:.1} m/s); with damping {:.4e} s",
                     m.stable.critical,
                     m.stable.element,
+                    m.groups[m.element_location[m.stable.element].0 as usize].name,
                     m.stable.length,
                     m.stable.speed,
                     m.critical_step_with_damping()
                 );
+                let prescribed = (0..m.n_elements())
+                    .filter(|&e| m.element_fully_prescribed(e))
+                    .count();
+                if prescribed > 0 {
+                    say!(
+                        "          {prescribed} elements with every node prescribed (fixed or driven in x, y and z) do not limit the step"
+                    );
+                }
+                let schedule = dcfm::stage::StepSchedule::new(c.end, c.dt);
                 say!(
-                    "time      Δt = {:.4e} s (safety {}), end {} s → {} steps",
+                    "time      Δt = {:.4e} s (safety {}), end {} s → {} steps{}",
                     c.dt,
                     c.safety,
                     readable(c.end),
-                    readable((c.end / c.dt).ceil())
+                    readable(schedule.steps as f64),
+                    if !schedule.shortened(c.dt) {
+                        String::new()
+                    } else if m.boundaries.is_some() {
+                        format!(
+                            " (full steps with absorbing boundaries: ends at {:.6e} s)",
+                            schedule.steps as f64 * c.dt
+                        )
+                    } else {
+                        format!(
+                            ", the last one {:.4e} s to land on the end",
+                            schedule.last_step
+                        )
+                    }
                 );
                 say!("memory    {:.0} bytes per element", m.bytes_per_element());
                 if let Some(b) = &m.boundaries {

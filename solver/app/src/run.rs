@@ -11,10 +11,10 @@ use dcfm::case::probes::Probes;
 use dcfm::case::{Case, OutputSection};
 use dcfm::error::{DcfmError, Result};
 use dcfm::stage::checkpoint::{read_checkpoint, write_checkpoint};
-use dcfm::stage::{Energies, Simulation};
+use dcfm::stage::{Energies, Simulation, StepSchedule};
 
 use crate::output::{
-    write_atomic_with, write_summary, write_vtu, HistoryWriter, PvdCollection, VtuField,
+    write_atomic_with, write_summary, write_vtu, HistoryWriter, PvdCollection, VtuField, VtuStrings,
 };
 
 /// How to run.
@@ -46,8 +46,14 @@ pub struct RunSummary {
     pub threads: usize,
     pub steps: u64,
     pub dt: f64,
+    /// Length of the last step (s): `dt`, or the shortened step that lands on `end`.
+    pub last_dt: f64,
     pub critical_dt: f64,
     pub limiting_element: usize,
+    /// The case's `time.end` (s).
+    pub end_requested: f64,
+    /// Time of the last state (s): `end_requested` exactly, except with absorbing
+    /// boundaries (full steps only: the first step at or after the end).
     pub end_time: f64,
     pub wall_s: f64,
     pub steps_per_s: f64,
@@ -275,12 +281,15 @@ fn write_state_vtu(sim: &Simulation, out: &Path, pvd: &mut PvdCollection) -> Res
     let mut stress = vec![0.0; 6 * ne];
     let mut strain = vec![0.0; 6 * ne];
     let mut damage = vec![0.0; 11 * ne];
-    // Inactive cells (excavated, not yet placed) keep region −1 and active 0.
+    // `region`: the number of the cell's region in the `[[regions]]` order, whose names
+    // are the field data `region_names`; inactive cells (excavated, not yet placed) keep
+    // region −1 and active 0.
     let mut region = vec![-1.0; ne];
     let (cell_active, point_active) = crate::output::activity::activity_fields(model);
-    for g in &model.groups {
+    for (gi, g) in model.groups.iter().enumerate() {
         let ss = g.element_strain_stress(&sim.u);
         let dmg = g.element_damage_fields();
+        let number = model.region_number(gi) as f64;
         for (le, &e) in g.elements.iter().enumerate() {
             let e = e as usize;
             strain[6 * e..6 * e + 6].copy_from_slice(&ss[le].0);
@@ -288,7 +297,7 @@ fn write_state_vtu(sim: &Simulation, out: &Path, pvd: &mut PvdCollection) -> Res
             if let Some(d) = &dmg {
                 damage[11 * e..11 * e + 11].copy_from_slice(&d[le]);
             }
-            region[e] = g.region as f64;
+            region[e] = number;
         }
     }
     let pick = |k: usize, n: usize| -> Vec<f64> {
@@ -399,6 +408,10 @@ fn write_state_vtu(sim: &Simulation, out: &Path, pvd: &mut PvdCollection) -> Res
                 values: &cell_active,
             },
         ],
+        &[VtuStrings {
+            name: "region_names",
+            values: &model.region_names,
+        }],
     )?;
     pvd.add(sim.time, &name)
 }
@@ -477,7 +490,8 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
     let end = case.end;
     let dt = case.dt;
     let output = case.output.clone();
-    let total_steps = (end / dt).ceil() as u64;
+    let schedule = StepSchedule::new(end, dt);
+    let total_steps = schedule.steps;
     let checkpoint = out.join("checkpoint.bin");
     let ckpt_label = checkpoint.display().to_string();
     let resume_bytes = if opts.resume && checkpoint.exists() {
@@ -568,7 +582,26 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
     let start_step = sim.step;
     let t0 = Instant::now();
     while sim.step < total_steps {
-        sim.step().inspect_err(|_| {
+        // The last step lands on `end` (shortened when `end` is not a multiple of Δt).
+        let last = sim.step + 1 == total_steps;
+        if last
+            && schedule.shortened(dt)
+            && sim.can_shorten_steps()
+            && output.checkpoint_every > 0
+            && sim.step % output.checkpoint_every != 0
+        {
+            // The state after a shortened step is off the step grid and gets no
+            // checkpoint: checkpoint the last full step instead, so that a run resumed to
+            // a later end starts one step before this end.
+            hist.flush()?;
+            write_atomic_with(&checkpoint, |w| {
+                crate::static_run::write_static(w, static_result.as_ref(), &sim.model)?;
+                write_checkpoint(w, &sim)?;
+                write_peaks(w, &[peak_u, peak_v])
+            })?;
+        }
+        let taken = if last { sim.step_to(end) } else { sim.step() };
+        taken.inspect_err(|_| {
             let _ = hist.flush();
         })?;
         if sim.step % output.history_every == 0 || sim.step == total_steps {
@@ -596,7 +629,9 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
             let last = sim.step == total_steps;
             write_frame(&sim, out, &mut pvd, frames.as_mut(), false, last)?;
         }
-        if output.checkpoint_every > 0 && sim.step % output.checkpoint_every == 0 {
+        // A shortened last step is off the step grid: no checkpoint there (a run resumed
+        // to a later end continues from the last full-step checkpoint).
+        if output.checkpoint_every > 0 && sim.step % output.checkpoint_every == 0 && sim.on_grid() {
             hist.flush()?;
             write_atomic_with(&checkpoint, |w| {
                 crate::static_run::write_static(w, static_result.as_ref(), &sim.model)?;
@@ -618,6 +653,7 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
     hist.finish()?;
     let wall = t0.elapsed().as_secs_f64();
     let steps_run = sim.step - start_step;
+    let last_dt = sim.last_step();
     let summary = RunSummary {
         case: label,
         title,
@@ -626,8 +662,10 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
         threads: rayon::current_num_threads(),
         steps: sim.step,
         dt,
+        last_dt,
         critical_dt: sim.model.critical_step_with_damping(),
         limiting_element: sim.model.stable.element,
+        end_requested: end,
         end_time: sim.time,
         wall_s: wall,
         steps_per_s: steps_run as f64 / wall.max(1e-9),

@@ -17,7 +17,7 @@ use dcfm::stage::static_stage::{
 };
 use dcfm::stage::Simulation;
 
-use crate::output::{write_summary, write_vtu, HistoryWriter, VtuField};
+use crate::output::{write_summary, write_vtu, HistoryWriter, VtuField, VtuStrings};
 
 /// The model after the static stage.
 pub struct Staged {
@@ -152,7 +152,8 @@ fn write_outputs(model: &Model, result: &StaticResult, out: &Path, wall_s: f64) 
 
 /// `static.vtu`: the active elements (dormant nodes are in no cell), with the
 /// displacements, the displacements since the in-situ step, the reactions, and per cell
-/// the stress, strain, damage D, region and global element id.
+/// the stress, strain, damage D, region (`[[regions]]` order, names in the field data
+/// `region_names`) and global element id.
 fn write_static_vtu(model: &Model, result: &StaticResult, path: &Path) -> Result<()> {
     let mut cells = Vec::new();
     let mut ids = Vec::new();
@@ -160,7 +161,8 @@ fn write_static_vtu(model: &Model, result: &StaticResult, path: &Path) -> Result
     let mut strain = Vec::new();
     let mut damage = Vec::new();
     let mut region = Vec::new();
-    for g in &model.groups {
+    for (gi, g) in model.groups.iter().enumerate() {
+        let number = model.region_number(gi) as f64;
         let ss = g.element_strain_stress(&result.u);
         let dmg = g.element_damage_fields();
         for (le, &e) in g.elements.iter().enumerate() {
@@ -169,7 +171,7 @@ fn write_static_vtu(model: &Model, result: &StaticResult, path: &Path) -> Result
             strain.extend_from_slice(&ss[le].0);
             stress.extend_from_slice(&ss[le].1);
             damage.push(dmg.as_ref().map_or(0.0, |d| d[le][0]));
-            region.push(g.region as f64);
+            region.push(number);
         }
     }
     let flat = |f: &[[f64; 3]]| -> Vec<f64> { f.iter().flatten().copied().collect() };
@@ -227,5 +229,9 @@ fn write_static_vtu(model: &Model, result: &StaticResult, path: &Path) -> Result
                 values: &ids,
             },
         ],
+        &[VtuStrings {
+            name: "region_names",
+            values: &model.region_names,
+        }],
     )
 }

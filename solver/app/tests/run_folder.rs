@@ -61,9 +61,10 @@ fn run(text: &str, out: &Path, resume: bool) -> RunSummary {
     .unwrap()
 }
 
-/// Run to a shorter end, then resume to the full end. The short run ends at step 8
-/// (Δt = 2.19e-4 s): a checkpoint, and a last frame that the full run's schedule (every
-/// 5 steps) does not have.
+/// Run to a shorter end, then resume to the full end. The short run ends at 0.0016 s with
+/// a shortened 8th step (Δt = 2.19e-4 s): its last checkpoint is the state of step 7 (none
+/// is written off the step grid), and its last frame is one that the full run's schedule
+/// (every 5 steps) does not have.
 fn interrupted(out: &Path) -> RunSummary {
     run(&DECAYING.replace("end = 0.004", "end = 0.0016"), out, false);
     run(DECAYING, out, true)

@@ -452,8 +452,10 @@ impl AnchorBars {
     }
 
     /// End of a step: commit the plastic strains and advance the bond–slip bars' own nodes
-    /// by central difference with mass-proportional damping `alpha` (the model's α).
-    pub fn commit(&mut self, dt: f64, alpha: f64) {
+    /// by central difference with mass-proportional damping `alpha` (the model's α):
+    /// velocity increment `dt_v` (½(Δt⁻ + h), Δt for full steps), then displacement
+    /// increment `h` × velocity (stage::dynamic, variable step).
+    pub fn commit(&mut self, dt_v: f64, h: f64, alpha: f64) {
         std::mem::swap(&mut self.plastic, &mut self.plastic_trial);
         self.plastic_trial.copy_from_slice(&self.plastic);
         for b in self.bond_slip.iter_mut() {
@@ -461,8 +463,8 @@ impl AnchorBars {
                 // The head load pulls node 0 out (against t).
                 let ext = if i == 0 { -b.head_load } else { 0.0 };
                 let m = b.mass[i];
-                b.v[i] += dt * (ext - b.f[i] - alpha * m * b.v[i]) / m;
-                b.w[i] += dt * b.v[i];
+                b.v[i] += dt_v * (ext - b.f[i] - alpha * m * b.v[i]) / m;
+                b.w[i] += h * b.v[i];
             }
         }
     }

@@ -14,7 +14,8 @@ pub struct ElementFields {
     /// [D, D_t, D_c, κ_t, κ_c, εᵖ (6)] per element, volume-averaged (zero for materials
     /// without damage), the layout of `ElementGroup::element_damage_fields`.
     pub damage: Vec<f64>,
-    /// Region index of every element.
+    /// Region index of every element, in mesh-block order (`mesh.region_names`; the VTU
+    /// files number regions in `[[regions]]` order instead, `Model::region_number`).
     pub region: Vec<f64>,
 }
 

@@ -42,8 +42,16 @@ fn energies_vec(e: &Energies) -> [f64; N_ENERGY_VALUES] {
     ]
 }
 
-/// Serialise the simulation's state into `w`.
+/// Serialise the simulation's state into `w`. Only a state on the step grid (every step
+/// so far a full step Δt, [`Simulation::on_grid`]) can be written: a run resumed from it
+/// continues with full steps, as the run that wrote it.
 pub fn write_checkpoint(w: &mut impl Write, sim: &Simulation) -> std::io::Result<()> {
+    if !sim.on_grid() {
+        return Err(std::io::Error::other(format!(
+            "no checkpoint after a shortened step (step {}, t = {:e} s is off the step grid)",
+            sim.step, sim.time
+        )));
+    }
     {
         w.write_all(MAGIC)?;
         w.write_all(&(sim.u.len() as u64).to_le_bytes())?;
@@ -255,6 +263,7 @@ pub fn read_checkpoint(bytes: &[u8], file: &str, sim: &mut Simulation) -> Result
         accumulated: [e[8], e[9], e[10], e[11], e[12], e[13]],
     };
     sim.energy_account_restored();
+    sim.restored_on_grid();
     Ok(())
 }
 

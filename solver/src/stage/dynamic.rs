@@ -16,6 +16,19 @@
 //! The contact force that closes a gap in one step is then R = (Ū_j − Ū_i)/((wᵢ+wⱼ)Δt²)
 //! instead of the paper's 2MᵢMⱼ/((Mᵢ+Mⱼ)Δt²) factor — the same physical force
 //! (VERIFICATION.md W9), see docs/ARCHITECTURE.md.
+//!
+//! A step of another length h (the last step of a run whose end is not a multiple of Δt,
+//! [`Simulation::step_to`]) is the variable-step central difference (Belytschko, Liu &
+//! Moran 2000, §6.2.1): with Δt⁻ the length of the step before,
+//!
+//! ```text
+//! V^{n+½} = V^{n−½} + ½(Δt⁻ + h) M⁻¹ Fⁿ,   U^{n+1} = Uⁿ + h V^{n+½},
+//! ```
+//!
+//! the contact force closing a gap in that step R = ΔU/(w h ½(Δt⁻ + h)), and the work of
+//! Fⁿ over the trapezoidal half-intervals ½Δt⁻ V^{n−½} and ½h V^{n+½}. Models with
+//! absorbing boundaries (centred dashpots and free-field grids prepared for Δt) take full
+//! steps only.
 
 use rayon::prelude::*;
 
@@ -93,6 +106,10 @@ pub struct Simulation {
     energy_floor: f64,
     /// Largest P-wave speed of the model's materials (m/s).
     max_wave_speed: f64,
+    /// Length of the last step taken (s): Δt, or the shortened step of `step_to`.
+    last_step: f64,
+    /// Every step so far was a full step: the time is `step` × Δt.
+    on_grid: bool,
 }
 
 impl Simulation {
@@ -190,8 +207,35 @@ impl Simulation {
                 .iter()
                 .map(|g| g.material.elastic().p_wave_speed())
                 .fold(0.0, f64::max),
+            last_step: dt,
+            on_grid: true,
             model,
         }
+    }
+
+    /// Whether steps shorter than Δt are taken exactly ([`Simulation::step_to`]): not with
+    /// absorbing boundaries, whose centred dashpots and free-field grids are prepared for
+    /// Δt.
+    pub fn can_shorten_steps(&self) -> bool {
+        self.model.boundaries.is_none()
+    }
+
+    /// Whether the state lies on the step grid (every step so far a full step, the time
+    /// `step` × Δt): what a checkpoint can hold.
+    pub fn on_grid(&self) -> bool {
+        self.on_grid
+    }
+
+    /// Length of the last step taken (s): Δt, or the shortened step of
+    /// [`Simulation::step_to`].
+    pub fn last_step(&self) -> f64 {
+        self.last_step
+    }
+
+    /// The state was restored from a checkpoint (always on the step grid).
+    pub(crate) fn restored_on_grid(&mut self) {
+        self.on_grid = true;
+        self.last_step = self.dt;
     }
 
     /// Start the energy account afresh from the current velocities (after they were set
@@ -270,6 +314,39 @@ impl Simulation {
     /// 5. correction U^{n+1} = Ū + Δt² M⁻¹ R, V^{n+½} = V̄ + Δt M⁻¹ R (eqs. 2–3);
     /// 6. energies at tⁿ, instability check, commit of material states.
     pub fn step(&mut self) -> Result<()> {
+        self.advance(self.dt, None)
+    }
+
+    /// One step that ends exactly at `t_end`, at most Δt after the current time: a full
+    /// step when `t_end` is one Δt later (within 10⁻⁹ Δt; the time is then `t_end` itself),
+    /// else a shortened step h = `t_end` − tⁿ by the variable-step central difference
+    /// (module docs). A model that cannot shorten its steps
+    /// ([`Simulation::can_shorten_steps`]) takes a full step instead, past `t_end`.
+    pub fn step_to(&mut self, t_end: f64) -> Result<()> {
+        let h = t_end - self.time;
+        if !(h > 0.0 && h <= self.dt * (1.0 + 1e-9)) {
+            return Err(DcfmError::invalid(
+                "",
+                "time.end",
+                t_end,
+                format!(
+                    "a time after the current time {:e} s and at most one step Δt = {:e} s later",
+                    self.time, self.dt
+                ),
+            ));
+        }
+        if crate::stage::schedule::is_full_step(self.time, t_end, self.dt) {
+            self.advance(self.dt, Some(t_end))
+        } else if self.can_shorten_steps() {
+            self.advance(h, Some(t_end))
+        } else {
+            self.advance(self.dt, None)
+        }
+    }
+
+    /// One step of length `h` (Δt, or shorter from [`Simulation::step_to`]), ending at
+    /// `t_end` when given.
+    fn advance(&mut self, h: f64, t_end: Option<f64>) -> Result<()> {
         // 1–2.
         self.internal_forces();
         self.external_forces();
@@ -279,6 +356,13 @@ impl Simulation {
         // 3. Predictor + energies of the uncorrected motion, in fixed chunks.
         let dt = self.dt;
         let t = self.time;
+        // Velocity increment ½(Δt⁻ + h) (Δt for a full step after a full step).
+        let dt_prev = self.last_step;
+        let dt_v = if h == dt && dt_prev == dt {
+            dt
+        } else {
+            0.5 * (dt_prev + h)
+        };
         let alpha = self.model.damping.alpha;
         let gravity = self
             .model
@@ -291,6 +375,10 @@ impl Simulation {
             .unwrap_or([0.0; 3]);
         let ctx = NodeContext {
             dt,
+            dt_v,
+            dt_u: h,
+            dt_prev,
+            uniform: h == dt && dt_prev == dt,
             t,
             alpha,
             node_alpha: self.node_alpha.as_deref(),
@@ -335,7 +423,7 @@ impl Simulation {
                     // Acceleration (V^{n+½} − V^{n−½})/Δt of the uncorrected motion;
                     // recomputed at the contact nodes after the correction.
                     let vo = &ctx.v[i];
-                    *ai = std::array::from_fn(|d| (vi[d] - vo[d]) / dt);
+                    *ai = std::array::from_fn(|d| (vi[d] - vo[d]) / dt_v);
                     let vm = vi[0].abs().max(vi[1].abs()).max(vi[2].abs());
                     if !vm.is_finite() || !ui.iter().all(|x| x.is_finite()) {
                         if !out.nonfinite {
@@ -380,10 +468,13 @@ impl Simulation {
         self.contact_nodes.clear();
         if let Some(contact) = self.model.contact.as_mut() {
             let started = std::time::Instant::now();
+            // The contact forces enter U^{n+1} through h·½(Δt⁻ + h) M⁻¹ R (Δt² M⁻¹ R
+            // for full steps): the contact solver's Δt² is that product.
+            let dt_contact = if ctx.uniform { dt } else { (h * dt_v).sqrt() };
             let input = ContactStepInput {
                 step: self.step,
                 time: t,
-                dt,
+                dt: dt_contact,
                 inv_mass: &self.model.inv_mass,
                 coords: &self.model.mesh.coords,
                 u_old: &self.u,
@@ -417,8 +508,8 @@ impl Simulation {
                 let w = self.model.inv_mass[i];
                 let before = ctx.energy_parts(i, &self.v_next[i], &[0.0; 3]);
                 for d in 0..3 {
-                    self.u_next[i][d] += dt * dt * w * self.r[i][d];
-                    self.v_next[i][d] += dt * w * self.r[i][d];
+                    self.u_next[i][d] += h * dt_v * w * self.r[i][d];
+                    self.v_next[i][d] += dt_v * w * self.r[i][d];
                 }
                 (before, ctx.energy_parts(i, &self.v_next[i], &self.r[i]))
             };
@@ -491,7 +582,7 @@ impl Simulation {
         for &i in &self.contact_nodes {
             let i = i as usize;
             let (vn, vo) = (&self.v_next[i], &self.v[i]);
-            self.a[i] = std::array::from_fn(|d| (vn[d] - vo[d]) / dt);
+            self.a[i] = std::array::from_fn(|d| (vn[d] - vo[d]) / dt_v);
         }
         std::mem::swap(&mut self.u, &mut self.u_next);
         std::mem::swap(&mut self.v, &mut self.v_next);
@@ -499,10 +590,16 @@ impl Simulation {
             g.states.commit();
         }
         if let Some(anchors) = self.model.anchors.as_mut() {
-            anchors.commit(dt, alpha);
+            anchors.commit(dt_v, h, alpha);
         }
         self.step += 1;
-        self.time = (self.step as f64) * dt;
+        self.on_grid &= h == dt;
+        self.last_step = h;
+        self.time = match t_end {
+            Some(end) => end,
+            None if self.on_grid => (self.step as f64) * dt,
+            None => t + h,
+        };
         Ok(())
     }
 
@@ -720,7 +817,16 @@ fn kinetic_energy(v: &[[f64; 3]], mass: &[f64]) -> f64 {
 
 /// Read-only data of the node pass.
 struct NodeContext<'a> {
+    /// The full step Δt (the boundary nodes' updates, prepared for it).
     dt: f64,
+    /// Velocity increment ½(Δt⁻ + h) of this step.
+    dt_v: f64,
+    /// Length h of this step (displacement increment U^{n+1} − Uⁿ = h V^{n+½}).
+    dt_u: f64,
+    /// Length Δt⁻ of the step before (the work over ½Δt⁻ V^{n−½}).
+    dt_prev: f64,
+    /// Full steps before and now: h = Δt⁻ = Δt.
+    uniform: bool,
     t: f64,
     alpha: f64,
     node_alpha: Option<&'a [f64]>,
@@ -760,22 +866,23 @@ impl NodeContext<'_> {
             + r[d]
     }
 
-    /// Predictor of node i (eq. 4): V̄^{n+½} and Ū^{n+1}, constraints imposed.
+    /// Predictor of node i (eq. 4): V̄^{n+½} and Ū^{n+1}, constraints imposed (a
+    /// prescribed DOF moves by its history over [tⁿ, tⁿ + h]).
     #[inline(always)]
     fn predict(&self, i: usize, u_next: &mut [f64; 3], v_next: &mut [f64; 3]) {
         let m = self.mass[i];
         let c = self.constrained[i];
         for d in 0..3 {
             let vd = if c & (1 << d) == 0 {
-                self.v[i][d] + self.dt * self.applied_force(i, d, &[0.0; 3]) / m
+                self.v[i][d] + self.dt_v * self.applied_force(i, d, &[0.0; 3]) / m
             } else if self.fixed[i] & (1 << d) != 0 {
                 0.0
             } else {
                 let p = &self.prescribed[self.prescribed_of[i][d] as usize];
-                p.half_step_velocity(self.t, self.dt, self.u[i][d])
+                p.half_step_velocity(self.t, self.dt_u, self.u[i][d])
             };
             v_next[d] = vd;
-            u_next[d] = self.u[i][d] + self.dt * vd;
+            u_next[d] = self.u[i][d] + self.dt_u * vd;
         }
     }
 
@@ -802,13 +909,13 @@ impl NodeContext<'_> {
             let ext = fe[d] + m * self.gravity[d];
             let damp = fd[d] + alpha * m * v[d];
             let force = ext - fi[d] - damp;
-            let vd = v[d] + self.dt * force * w;
+            let vd = v[d] + self.dt_v * force * w;
             v_next[d] = vd;
-            u_next[d] = u[d] + self.dt * vd;
-            let vn = 0.5 * (v[d] + vd);
+            u_next[d] = u[d] + self.dt_u * vd;
+            let vn = self.velocity_at_t(v[d], vd);
             kin += 0.5 * m * vn * vn;
-            let b = 0.5 * self.dt * v[d];
-            let a = 0.5 * self.dt * vd;
+            let b = 0.5 * self.dt_prev * v[d];
+            let a = 0.5 * self.dt_u * vd;
             before[0] += fi[d] * b;
             before[1] += damp * b;
             before[2] += ext * b;
@@ -832,10 +939,10 @@ impl NodeContext<'_> {
         let m = self.mass[i];
         let mut p = [0.0; 13];
         for d in 0..3 {
-            let vn = 0.5 * (self.v[i][d] + v_next[d]);
+            let vn = self.velocity_at_t(self.v[i][d], v_next[d]);
             p[0] += 0.5 * m * vn * vn;
             let reaction = if self.constrained[i] & (1 << d) != 0 {
-                m * (v_next[d] - self.v[i][d]) / self.dt - self.applied_force(i, d, r)
+                m * (v_next[d] - self.v[i][d]) / self.dt_v - self.applied_force(i, d, r)
             } else {
                 0.0
             };
@@ -847,14 +954,25 @@ impl NodeContext<'_> {
                 reaction,
                 0.0,
             ];
-            let before = 0.5 * self.dt * self.v[i][d];
-            let after = 0.5 * self.dt * v_next[d];
+            let before = 0.5 * self.dt_prev * self.v[i][d];
+            let after = 0.5 * self.dt_u * v_next[d];
             for k in 0..6 {
                 p[1 + k] += forces[k] * before;
                 p[7 + k] += forces[k] * after;
             }
         }
         p
+    }
+
+    /// Velocity at tⁿ from V^{n−½} (at tⁿ − ½Δt⁻) and V^{n+½} (at tⁿ + ½h): their mean for
+    /// full steps, the linear interpolation (h V^{n−½} + Δt⁻ V^{n+½})/(Δt⁻ + h) otherwise.
+    #[inline(always)]
+    fn velocity_at_t(&self, before: f64, after: f64) -> f64 {
+        if self.uniform {
+            0.5 * (before + after)
+        } else {
+            (self.dt_u * before + self.dt_prev * after) / (self.dt_prev + self.dt_u)
+        }
     }
 
     /// Predictor of boundary node i (slot b of `bs`) with contact force `r`: the leapfrog

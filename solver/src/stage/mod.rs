@@ -4,7 +4,9 @@
 pub mod checkpoint;
 pub mod dynamic;
 pub mod energy;
+pub mod schedule;
 pub mod static_stage;
 
 pub use dynamic::Simulation;
 pub use energy::Energies;
+pub use schedule::StepSchedule;

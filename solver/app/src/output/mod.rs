@@ -3,6 +3,7 @@
 //! One concept per file:
 //! - [`activity`]: which cells and points are active (excavation, placement);
 //! - [`atomic`]: temp file + fsync + rename, so a crash never leaves a half-written file;
+//! - [`field_data`]: named string arrays of a VTU (`region_names`);
 //! - [`vtu`]: ParaView meshes with point and cell fields (XML UnstructuredGrid, raw binary);
 //! - [`vtu_compressed`]: compact frames (Float32, zlib, a subset of the cells) for long runs;
 //! - [`pvd`]: the time collection of the VTU files, rewritten after every step;
@@ -11,6 +12,7 @@
 
 pub mod activity;
 pub mod atomic;
+pub mod field_data;
 pub mod histories;
 pub mod pvd;
 pub mod summary;
@@ -18,6 +20,7 @@ pub mod vtu;
 pub mod vtu_compressed;
 
 pub use atomic::{write_atomic, write_atomic_with};
+pub use field_data::{read_string_arrays, VtuStrings};
 pub use histories::HistoryWriter;
 pub use pvd::{PvdCollection, PvdEntry};
 pub use summary::write_summary;

@@ -17,6 +17,7 @@
 use std::io::{self, Write};
 use std::path::Path;
 
+use super::field_data::{bad_string, write_field_data, VtuStrings};
 use super::{atomic::write_atomic_with, label};
 use dcfm::error::{DcfmError, Result};
 
@@ -40,16 +41,18 @@ enum IndexType {
 }
 
 /// Write a `.vtu` file of hex8 `cells` (VTK/Gmsh node order) over `coords`, with
-/// `point_fields` (one tuple per point) and `cell_fields` (one tuple per cell), atomically.
+/// `point_fields` (one tuple per point), `cell_fields` (one tuple per cell) and the
+/// string arrays `field_data` of the whole data set (`output::field_data`), atomically.
 ///
-/// Errors name the file and the offending field (wrong length, zero components) or cell
-/// (node index out of range); nothing is written then.
+/// Errors name the file and the offending field (wrong length, zero components, a NUL
+/// byte in a string) or cell (node index out of range); nothing is written then.
 pub fn write_vtu(
     path: &Path,
     coords: &[[f64; 3]],
     cells: &[[u32; 8]],
     point_fields: &[VtuField],
     cell_fields: &[VtuField],
+    field_data: &[VtuStrings],
 ) -> Result<()> {
     let fits_i32 =
         coords.len() <= i32::MAX as usize && cells.len().saturating_mul(8) <= i32::MAX as usize;
@@ -58,7 +61,15 @@ pub fn write_vtu(
     } else {
         IndexType::Int64
     };
-    write_vtu_with(path, coords, cells, point_fields, cell_fields, index)
+    write_vtu_with(
+        path,
+        coords,
+        cells,
+        point_fields,
+        cell_fields,
+        field_data,
+        index,
+    )
 }
 
 fn write_vtu_with(
@@ -67,12 +78,35 @@ fn write_vtu_with(
     cells: &[[u32; 8]],
     point_fields: &[VtuField],
     cell_fields: &[VtuField],
+    field_data: &[VtuStrings],
     index: IndexType,
 ) -> Result<()> {
     check(path, coords.len(), cells, point_fields, cell_fields)?;
+    check_strings(path, field_data)?;
     write_atomic_with(path, |w| {
-        write_body(w, coords, cells, point_fields, cell_fields, index)
+        write_body(
+            w,
+            coords,
+            cells,
+            point_fields,
+            cell_fields,
+            field_data,
+            index,
+        )
     })
+}
+
+/// Refuse a string that the format cannot hold (a NUL byte ends a string there).
+pub(crate) fn check_strings(path: &Path, field_data: &[VtuStrings]) -> Result<()> {
+    match bad_string(field_data) {
+        Some((name, k, value)) => Err(DcfmError::invalid(
+            label(path),
+            format!("field data '{name}'[{k}]"),
+            format!("{value:?}"),
+            "a string without NUL bytes",
+        )),
+        None => Ok(()),
+    }
 }
 
 fn check(
@@ -144,6 +178,7 @@ fn write_body<W: Write>(
     cells: &[[u32; 8]],
     point_fields: &[VtuField],
     cell_fields: &[VtuField],
+    field_data: &[VtuStrings],
     index: IndexType,
 ) -> io::Result<()> {
     let isize = match index {
@@ -182,6 +217,7 @@ fn write_body<W: Write>(
         "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">"
     )?;
     writeln!(w, "  <UnstructuredGrid>")?;
+    write_field_data(w, field_data, 4)?;
     writeln!(
         w,
         "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">",
@@ -441,6 +477,7 @@ mod tests {
         let p: Vec<f64> = (0..coords.len()).map(|i| -(i as f64) * 1.5e6).collect();
         let damage = [0.25, 1.0];
         let stress: Vec<f64> = (0..12).map(|i| i as f64 * 1e5 + 0.125).collect();
+        let names = vec!["rock".to_string(), "dam <body> & \"core\"".to_string()];
         write_vtu_with(
             &path,
             &coords,
@@ -469,9 +506,19 @@ mod tests {
                     values: &stress,
                 },
             ],
+            &[VtuStrings {
+                name: "region_names",
+                values: &names,
+            }],
             index,
         )
         .unwrap();
+        // The field data is readable beside the numeric arrays (vtkio skips it).
+        let text = std::fs::read_to_string(&path).unwrap();
+        assert_eq!(
+            crate::output::read_string_arrays(&text).unwrap(),
+            vec![("region_names".to_string(), names)]
+        );
         let piece = read_back(&path);
         assert_eq!(piece.num_points(), coords.len());
         let pts: Vec<f64> = piece.points.cast_into::<f64>().unwrap();
@@ -531,7 +578,7 @@ mod tests {
     fn no_fields_and_no_cells() {
         let dir = test_dir("vtu-empty");
         let path = dir.join("empty.vtu");
-        write_vtu(&path, &[[0.0; 3]], &[], &[], &[]).unwrap();
+        write_vtu(&path, &[[0.0; 3]], &[], &[], &[], &[]).unwrap();
         let piece = read_back(&path);
         assert_eq!(piece.num_points(), 1);
         assert_eq!(piece.cells.types.len(), 0);
@@ -553,6 +600,7 @@ mod tests {
                 values: &short,
             }],
             &[],
+            &[],
         )
         .unwrap_err()
         .to_string();
@@ -560,10 +608,29 @@ mod tests {
         assert!(!path.exists());
         let mut bad_cells = cells.clone();
         bad_cells[1][3] = 99;
-        let err = write_vtu(&path, &coords, &bad_cells, &[], &[])
+        let err = write_vtu(&path, &coords, &bad_cells, &[], &[], &[])
             .unwrap_err()
             .to_string();
         assert!(err.contains("cell 1") && err.contains("99"), "{err}");
+        let names = vec!["rock".to_string(), "a\0b".to_string()];
+        let err = write_vtu(
+            &path,
+            &coords,
+            &cells,
+            &[],
+            &[],
+            &[VtuStrings {
+                name: "region_names",
+                values: &names,
+            }],
+        )
+        .unwrap_err()
+        .to_string();
+        assert!(
+            err.contains("bad.vtu") && err.contains("field data 'region_names'[1]"),
+            "{err}"
+        );
+        assert!(!path.exists());
     }
 }
 

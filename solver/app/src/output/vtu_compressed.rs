@@ -21,6 +21,7 @@ use std::path::Path;
 use flate2::write::ZlibEncoder;
 use flate2::Compression;
 
+use super::field_data::{write_field_data, VtuStrings};
 use super::vtu::{xml_escape, VtuField, VTK_HEXAHEDRON};
 use super::{atomic::write_atomic_with, label};
 use dcfm::error::{DcfmError, Result};
@@ -80,7 +81,9 @@ pub fn write_vtu_compressed(
     cells: &[[u32; 8]],
     point_fields: &[VtuField],
     cell_fields: &[VtuField],
+    field_data: &[VtuStrings],
 ) -> Result<()> {
+    super::vtu::check_strings(path, field_data)?;
     for (kind, fields, n) in [
         ("point field", point_fields, coords.len()),
         ("cell field", cell_fields, cells.len()),
@@ -117,7 +120,7 @@ pub fn write_vtu_compressed(
         ));
     }
     write_atomic_with(path, |w| {
-        write_body(w, coords, cells, point_fields, cell_fields)
+        write_body(w, coords, cells, point_fields, cell_fields, field_data)
     })
 }
 
@@ -127,6 +130,7 @@ fn write_body<W: Write>(
     cells: &[[u32; 8]],
     point_fields: &[VtuField],
     cell_fields: &[VtuField],
+    field_data: &[VtuStrings],
 ) -> io::Result<()> {
     let level = Compression::fast();
     let mut arrays: Vec<(String, Compressed)> = Vec::new();
@@ -192,6 +196,7 @@ fn write_body<W: Write>(
         "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\" compressor=\"vtkZLibDataCompressor\">"
     )?;
     writeln!(w, "  <UnstructuredGrid>")?;
+    write_field_data(w, field_data, 4)?;
     writeln!(
         w,
         "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">",
@@ -324,6 +329,7 @@ mod tests {
         let cells = vec![[0, 1, 3, 2, 4, 5, 7, 6], [4, 5, 7, 6, 8, 9, 11, 10]];
         let u: Vec<f64> = (0..36).map(|i| 0.25 * i as f64).collect();
         let d = vec![0.5, 1.0];
+        let names = vec!["concrete".to_string(), "rock".to_string()];
         let path = dir.join("a.vtu");
         write_vtu_compressed(
             &path,
@@ -339,10 +345,20 @@ mod tests {
                 components: 1,
                 values: &d,
             }],
+            &[VtuStrings {
+                name: "region_names",
+                values: &names,
+            }],
         )
         .unwrap();
         let file = std::fs::read(&path).unwrap();
         let text = String::from_utf8_lossy(&file);
+        // The field data sits in the XML header, before the binary appended block.
+        let header = &text[..text.find("<AppendedData").unwrap()];
+        assert_eq!(
+            crate::output::read_string_arrays(header).unwrap(),
+            vec![("region_names".to_string(), names.clone())]
+        );
         let offset = |name: &str| {
             let i = text.find(&format!("Name=\"{name}\"")).unwrap();
             let rest = &text[i..];
@@ -383,6 +399,7 @@ mod tests {
                 components: 1,
                 values: &u,
             }],
+            &[],
         )
         .unwrap_err();
         assert!(e.to_string().contains("'damage'"), "{e}");

@@ -74,6 +74,14 @@ pub(super) fn build_regions(
 ) -> Result<Vec<RegionSetup>> {
     let mut setups = Vec::new();
     for (ri, r) in section.iter().enumerate() {
+        if let Some(first) = section[..ri].iter().position(|q| q.name == r.name) {
+            return Err(DcfmError::invalid(
+                label,
+                format!("regions[{ri}].name"),
+                format!("\"{}\"", r.name),
+                format!("a region named once (regions[{first}] has that name already)"),
+            ));
+        }
         let Some(material) = materials.get(&r.material) else {
             return Err(DcfmError::invalid(
                 label,

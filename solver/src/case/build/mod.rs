@@ -101,6 +101,8 @@ fn build(
     let probes = output::build_output(&model, &file.output, label)?;
     let static_plan =
         static_stage::build_static(&model, file.static_stage.as_ref(), &file.output, label)?;
+    // Every constraint is known now: the stable step from the elements that move.
+    model.refresh_stable_step();
     let dt = model
         .time_step(file.time.dt, file.time.safety)
         .map_err(|e| e.in_file(label))?;

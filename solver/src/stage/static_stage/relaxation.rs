@@ -139,7 +139,9 @@ pub fn relax(
         model.mass = scaled_masses(&model);
         1.0
     } else {
-        input.settings.safety * model.stable.critical
+        // The step for the static supports in place now (the dynamic stage's prescribed
+        // elements may move here).
+        input.settings.safety * model.stable_step_now().critical
     };
     let mut sim = Simulation::new_unchecked(model, dt);
     sim.u.copy_from_slice(u);

@@ -64,6 +64,7 @@ fn every_case_is_tested_here() {
         "W9",
         "bonded",
         "drop",
+        "W16",
         "W15a",
         "W15b",
         "W15c",

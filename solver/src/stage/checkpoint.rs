@@ -262,7 +262,6 @@ pub fn read_checkpoint(bytes: &[u8], file: &str, sim: &mut Simulation) -> Result
         initial_kinetic: e[7],
         accumulated: [e[8], e[9], e[10], e[11], e[12], e[13]],
     };
-    sim.energy_account_restored();
     sim.restored_on_grid();
     Ok(())
 }

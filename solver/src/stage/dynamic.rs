@@ -95,8 +95,6 @@ pub struct Simulation {
     /// Mass-proportional damping α of each node, when the regions differ in α.
     node_alpha: Option<Vec<f64>>,
     chunks: Vec<ChunkResult>,
-    /// The next step is the first of the energy account (t⁰ is set there).
-    energy_origin_pending: bool,
     /// Largest energy scale seen so far (for the balance check).
     peak_energy: f64,
     /// Consecutive steps with the balance residual above half of `peak_energy`.
@@ -191,7 +189,6 @@ impl Simulation {
             contact_nodes: Vec::new(),
             prescribed_of,
             chunks: vec![ChunkResult::default(); n_chunks],
-            energy_origin_pending: true,
             contact_seconds: 0.0,
             peak_energy: 0.0,
             unbalanced_steps: 0,
@@ -247,13 +244,7 @@ impl Simulation {
             initial_kinetic: k,
             ..Default::default()
         };
-        self.energy_origin_pending = true;
         self.peak_energy = 0.0;
-    }
-
-    /// The energy account was restored (from a checkpoint): it has already started.
-    pub(crate) fn energy_account_restored(&mut self) {
-        self.energy_origin_pending = false;
     }
 
     /// Internal forces f_int(Uⁿ) (and β K0 V^{n−½}) of every element, colour by colour,
@@ -541,8 +532,7 @@ impl Simulation {
             }
         }
         let e = &mut self.energies;
-        e.advance(&parts, self.energy_origin_pending);
-        self.energy_origin_pending = false;
+        e.advance(&parts);
         if let Some((node, true, _)) = worst {
             return Err(self.instability(node as usize, "non-finite displacement or velocity"));
         }

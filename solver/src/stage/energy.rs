@@ -1,11 +1,26 @@
-//! Energy accounting (VERIFICATION.md W12). Energies are reported at the full steps tⁿ:
-//! kinetic ½ M |Vⁿ|² with Vⁿ = ½(V^{n−½} + V^{n+½}), and the work of every force category
-//! by the trapezoidal rule over each step, W(tⁿ) = Σ ½(F^{k−1} + F^k)·(U^k − U^{k−1}).
-//! With these two definitions the balance of the central-difference scheme closes to
-//! O(Δt²) — the residual measures what the discretisation loses, not a bookkeeping
-//! offset. The trapezoidal sums are kept as two running half-sums, so no force of the
-//! previous step has to be stored: ½ F^k·ΔU^{k−½} is added at step k and ½ F^k·ΔU^{k+½}
-//! once step k is done.
+//! Energy accounting (VERIFICATION.md W12, docs/ARCHITECTURE.md "Energy accounting").
+//! Energies are reported at the full steps tⁿ: kinetic ½ M |Vⁿ|² with
+//! Vⁿ = ½(V^{n−½} + V^{n+½}), and the work of every force category by the trapezoidal rule
+//! over each step, W(tⁿ) = ½ F⁰·ΔU^{−½} + Σ_{k=1..n} ½(F^{k−1} + F^k)·(U^k − U^{k−1}).
+//!
+//! The account starts from the state the scheme starts from: the initial velocities are
+//! V^{−½} (`Simulation::new`), so the initial kinetic energy is K₀ = ½ M |V^{−½}|² — the
+//! case's initial velocity field, before any force has acted — and the first force F⁰
+//! works over the half step before t⁰ as well, ½ F⁰·Δt V^{−½}. With M(V^{n+½} − V^{n−½}) =
+//! Δt Fⁿ (every force, the reactions at prescribed DOFs included) this gives the exact
+//! identity ½ V^{n−½}·M V^{n+½} = K₀ + W(tⁿ), so the residual is
+//!
+//!   kinetic − K₀ − W(tⁿ) = ½ M|Vⁿ|² − ½ V^{n−½}·M V^{n+½} = (Δt²/8) Σ M |aⁿ|²,
+//!   aⁿ = (V^{n+½} − V^{n−½})/Δt,
+//!
+//! O(Δt²) for smooth motion and free of any term of the first step: a prescribed velocity
+//! that jumps from 0 to v at t = 0 (a belt started impulsively) has a reaction M v/Δt at
+//! t⁰ whose work ½ (M v/Δt)·Δt (0 + v) = ½ M v² is exactly the kinetic energy it injects,
+//! booked as `input`. (Starting the sums at t⁰ with K₀ = ½ M |V⁰|², the scheme's
+//! velocity at t⁰, left (Δt²/8) M |a⁰|² = ¼ ½ M v² of such a jump as a constant residual.)
+//! The trapezoidal sums are kept as two running half-sums, so no force of the previous
+//! step has to be stored: ½ F^k·ΔU^{k−½} is added at step k and ½ F^k·ΔU^{k+½} once step k
+//! is done.
 
 use serde::Serialize;
 
@@ -27,7 +42,8 @@ pub struct Energies {
     pub input: f64,
     /// Work absorbed by the absorbing boundaries' dashpots and springs.
     pub boundary: f64,
-    /// Kinetic energy at the start.
+    /// Kinetic energy at the start, ½ M |V^{−½}|² of the initial velocities (the value of
+    /// histories.csv's row at t = 0).
     pub initial_kinetic: f64,
     /// Running trapezoidal sums of the work categories up to the last completed
     /// interval (internal, damping, contact, external, input, boundary).
@@ -66,14 +82,9 @@ impl Energies {
 
     /// Take the parts of step n: report the energies at tⁿ and advance the running sums.
     /// Contact work is stored with its sign flipped (energy absorbed by the interface).
-    pub(crate) fn advance(&mut self, parts: &EnergyParts, first_step: bool) {
-        if first_step {
-            // The interval before t⁰ does not exist: start the sums at −½F⁰·ΔU^{−½}.
-            for k in 0..N_WORK {
-                self.accumulated[k] = -parts[1 + k];
-            }
-            self.initial_kinetic = parts[0];
-        }
+    /// At n = 0 the running sums are zero, so ½ F⁰·ΔU^{−½} (the half step before t⁰) is
+    /// booked: see the module documentation.
+    pub(crate) fn advance(&mut self, parts: &EnergyParts) {
         let now: [f64; N_WORK] = std::array::from_fn(|k| self.accumulated[k] + parts[1 + k]);
         self.kinetic = parts[0];
         self.internal = now[0];

@@ -68,6 +68,21 @@ pub enum DcfmError {
 /// Result alias used across the crate.
 pub type Result<T> = std::result::Result<T, DcfmError>;
 
+/// A value as given, except that a number of more than 20 digits (a float such as 1e300,
+/// which `Display` writes out in full; no integer field holds one) is shown in
+/// engineering notation.
+fn readable_value(v: String) -> String {
+    let plain = v.len() > 20
+        && v.bytes()
+            .all(|b| b.is_ascii_digit() || b == b'-' || b == b'.')
+        && v.parse::<f64>().is_ok();
+    if plain {
+        crate::readable::engineering(v.parse().unwrap_or(f64::NAN))
+    } else {
+        v
+    }
+}
+
 impl DcfmError {
     /// Shorthand for [`DcfmError::InvalidInput`].
     pub fn invalid(
@@ -79,7 +94,7 @@ impl DcfmError {
         DcfmError::InvalidInput {
             file: file.into(),
             field: field.into(),
-            value: value.to_string(),
+            value: readable_value(value.to_string()),
             expected: expected.into(),
         }
     }

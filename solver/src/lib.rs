@@ -19,11 +19,13 @@ pub mod case;
 pub mod contact;
 pub mod element;
 pub mod error;
+pub mod fnv;
 pub mod load;
 pub mod material;
 pub mod mesh;
 pub mod model;
 pub mod motion;
+pub mod readable;
 pub mod stage;
 
 pub use error::{DcfmError, Result};

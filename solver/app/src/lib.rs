@@ -6,9 +6,11 @@
 //! histories, the JSON summary, atomic writes). The binary `dcfm` (src/main.rs) parses
 //! the command line.
 
+pub mod estimate;
 pub mod frames;
 pub mod mesh_cmd;
 pub mod motion_cmd;
 pub mod output;
+pub mod progress;
 pub mod run;
 pub mod static_run;

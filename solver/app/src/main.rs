@@ -1,8 +1,9 @@
 //! `dcfm` — run or check a case file.
 //!
 //! ```text
-//! dcfm check CASE                       validate, print the model summary and the stable step
-//! dcfm run CASE [--out DIR] [--threads N] [--resume] [--quiet]
+//! dcfm check CASE                       validate, print the model, the stable step, the wall time
+//! dcfm run CASE [--out DIR] [--threads N] [--resume] [--resume-with-changed-case]
+//!               [--allow-long] [--quiet]
 //! dcfm mesh yingxiuwan [--variant full|ci] [--measure LIST] [--end T] [--out DIR]
 //! dcfm post yingxiuwan RUN_DIR [--case CASE]
 //! dcfm motion FILE… [--format F] [--units U] [--dt DT] [processing flags] [--out DIR] [--plot svg]
@@ -16,6 +17,7 @@ use std::io::Write;
 use clap::{Parser, Subcommand};
 
 use dcfm::case::load_case;
+use dcfm::readable::{duration, engineering};
 use dcfm_app::run::{run_case, RunOptions};
 
 #[derive(Parser)]
@@ -31,7 +33,8 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// Validate a case file and print the model summary and the stable time step.
+    /// Validate a case file and print the model summary, the stable time step and the
+    /// expected wall time (from a few timed steps).
     Check {
         /// The case file (TOML).
         case: PathBuf,
@@ -46,9 +49,17 @@ enum Command {
         /// Worker threads (default: all cores). Results do not depend on it.
         #[arg(long)]
         threads: Option<usize>,
-        /// Continue from the checkpoint in the output directory.
+        /// Continue from the checkpoint in the output directory (refused when the case
+        /// or its mesh changed since it was written, or when it is corrupted).
         #[arg(long)]
         resume: bool,
+        /// Like --resume, and continue even when the case or its mesh changed since the
+        /// checkpoint was written (the changes are reported).
+        #[arg(long)]
+        resume_with_changed_case: bool,
+        /// Run even when the case has more steps than its budget `[time] max_steps`.
+        #[arg(long)]
+        allow_long: bool,
         /// No progress bar.
         #[arg(long)]
         quiet: bool,
@@ -167,8 +178,8 @@ fn main() -> ExitCode {
                     "time      Δt = {:.4e} s (safety {}), end {} s → {} steps{}",
                     c.dt,
                     c.safety,
-                    readable(c.end),
-                    readable(schedule.steps as f64),
+                    engineering(c.end),
+                    engineering(schedule.steps as f64),
                     if !schedule.shortened(c.dt) {
                         String::new()
                     } else if m.boundaries.is_some() {
@@ -204,6 +215,20 @@ fn main() -> ExitCode {
                 for line in c.probes.describe() {
                     say!("{line}");
                 }
+                if let Err(e) = c.checked_step_count(false) {
+                    say!("warning   dcfm run will refuse it: {e}");
+                }
+                match dcfm_app::estimate::estimate_wall_time(c) {
+                    Ok(w) => say!(
+                        "estimate  {} wall time for {} steps ({} element-updates/s timed over {} steps on {} threads here; static stage and outputs not included)",
+                        duration(w.wall_s),
+                        engineering(w.steps),
+                        engineering(w.element_updates_per_s.round()),
+                        w.steps_timed,
+                        w.threads
+                    ),
+                    Err(e) => say!("estimate  no wall time: the timed steps failed ({e})"),
+                }
                 ExitCode::SUCCESS
             }
             Err(e) => {
@@ -216,8 +241,11 @@ fn main() -> ExitCode {
             out,
             threads,
             resume,
+            resume_with_changed_case,
+            allow_long,
             quiet,
         } => {
+            let resume = resume || resume_with_changed_case;
             if let Some(mut n) = threads {
                 if n == 0 {
                     esay!("error: --threads 0: expected at least 1");
@@ -252,13 +280,15 @@ fn main() -> ExitCode {
             };
             if resume && !out.join("checkpoint.bin").exists() {
                 esay!(
-                    "note: --resume: no checkpoint in {}; starting from scratch",
+                    "note: --resume: no checkpoint in {}; starting from scratch (step 0)",
                     out.display()
                 );
             }
             let opts = RunOptions {
                 out: out.clone(),
                 resume,
+                resume_with_changed_case,
+                allow_long,
                 progress: !quiet,
             };
             match run_case(loaded, &opts) {
@@ -282,15 +312,5 @@ fn main() -> ExitCode {
                 }
             }
         }
-    }
-}
-
-/// A count or a time as a person reads it: plain up to 10⁹, then in exponent form (an end
-/// time of 1e30 s is not printed as 31 digits).
-fn readable(x: f64) -> String {
-    if x.is_finite() && x.abs() < 1e9 {
-        format!("{x}")
-    } else {
-        format!("{x:.4e}")
     }
 }

@@ -4,13 +4,16 @@
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use indicatif::{ProgressBar, ProgressDrawTarget};
 use serde::Serialize;
 
+use dcfm::case::fingerprint::CaseFingerprint;
 use dcfm::case::probes::Probes;
 use dcfm::case::{Case, OutputSection};
 use dcfm::error::{DcfmError, Result};
 use dcfm::stage::checkpoint::{read_checkpoint, write_checkpoint};
+use dcfm::stage::checkpoint_seal::{open_checkpoint, SealedWriter};
+use dcfm::stage::static_stage::StaticResult;
 use dcfm::stage::{Energies, Simulation, StepSchedule};
 
 use crate::output::{
@@ -18,12 +21,17 @@ use crate::output::{
 };
 
 /// How to run.
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Default)]
 pub struct RunOptions {
     /// Output directory.
     pub out: PathBuf,
     /// Continue from `out/checkpoint.bin` if it exists.
     pub resume: bool,
+    /// Resume even when the case or its mesh changed since the checkpoint was written
+    /// (`--resume-with-changed-case`); the changes are reported.
+    pub resume_with_changed_case: bool,
+    /// Run a case of more steps than its step budget `time.max_steps` (`--allow-long`).
+    pub allow_long: bool,
     /// Draw a progress bar (on stderr, when it is a terminal).
     pub progress: bool,
 }
@@ -65,6 +73,9 @@ pub struct RunSummary {
     pub peak_displacement: Peak,
     pub peak_velocity: Peak,
     pub resumed_from_step: Option<u64>,
+    /// What changed in the case or mesh since the checkpoint the run resumed from
+    /// (`--resume-with-changed-case`); empty otherwise.
+    pub resumed_with_changes: Vec<String>,
     /// The probes of histories.csv and how each was found (node chosen for a point and
     /// its distance, the set of a mean).
     pub probes: Probes,
@@ -452,6 +463,43 @@ fn read_peaks(bytes: &[u8]) -> [Peak; 2] {
     })
 }
 
+/// Write `checkpoint.bin` (atomically): the sealed file of
+/// [`dcfm::stage::checkpoint_seal`] around the static block, the dynamic state and the
+/// peaks.
+fn write_checkpoint_file(
+    path: &Path,
+    fingerprint: &CaseFingerprint,
+    static_result: Option<&StaticResult>,
+    sim: &Simulation,
+    peaks: &[Peak; 2],
+) -> Result<()> {
+    write_atomic_with(path, |w| {
+        let mut s = SealedWriter::begin(w, fingerprint)?;
+        crate::static_run::write_static(&mut s, static_result, &sim.model)?;
+        write_checkpoint(&mut s, sim)?;
+        write_peaks(&mut s, peaks)?;
+        s.finish()?;
+        Ok(())
+    })
+}
+
+/// Most changes listed in the refusal of a checkpoint written for another case.
+const MAX_LISTED_CHANGES: usize = 8;
+
+/// The changes of the case as one line: the first few, then how many more.
+fn list_changes(changes: &[String]) -> String {
+    let mut s = changes
+        .iter()
+        .take(MAX_LISTED_CHANGES)
+        .cloned()
+        .collect::<Vec<_>>()
+        .join("; ");
+    if changes.len() > MAX_LISTED_CHANGES {
+        s += &format!("; and {} more", changes.len() - MAX_LISTED_CHANGES);
+    }
+    s
+}
+
 /// Step of a VTU frame written by [`write_state_vtu`] (`mesh_000120.vtu` → 120).
 fn frame_step(file: &str) -> Option<u64> {
     let digits = file.strip_prefix("mesh_")?.strip_suffix(".vtu")?;
@@ -483,15 +531,17 @@ fn remove_stale_files(out: &Path, pvd: &PvdCollection) -> Result<()> {
 
 /// Run a case to its end time, writing outputs under `opts.out`.
 pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
+    // A runaway (end time or step mistyped) is refused before anything is written.
+    let total_steps = case.checked_step_count(opts.allow_long)?;
     let out = &opts.out;
     std::fs::create_dir_all(out).map_err(|e| DcfmError::io(out.display().to_string(), e))?;
     let label = case.file.display().to_string();
     let title = case.title.clone();
-    let end = case.end;
     let dt = case.dt;
     let output = case.output.clone();
-    let schedule = StepSchedule::new(end, dt);
+    let schedule = StepSchedule::new(case.end, dt);
     let total_steps = schedule.steps;
+    let fingerprint = case.fingerprint.clone();
     let checkpoint = out.join("checkpoint.bin");
     let ckpt_label = checkpoint.display().to_string();
     let resume_bytes = if opts.resume && checkpoint.exists() {
@@ -499,31 +549,61 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
     } else {
         None
     };
+    // A corrupted checkpoint, one of an older format, or one written for another case or
+    // mesh is refused before anything is read from it (docs/outputs.md, "Checkpoints").
+    let sealed = match &resume_bytes {
+        Some(b) => Some(open_checkpoint(b, &ckpt_label)?),
+        None => None,
+    };
+    let changes = sealed
+        .as_ref()
+        .map(|s| fingerprint.changes_since(&s.fingerprint))
+        .unwrap_or_default();
+    if !changes.is_empty() {
+        if !opts.resume_with_changed_case {
+            return Err(DcfmError::Parse {
+                file: ckpt_label,
+                message: format!(
+                    "written for another version of {label}: {}. Run with \
+                     --resume-with-changed-case to continue from it with the case as it is \
+                     now, or without --resume to start again",
+                    list_changes(&changes)
+                ),
+            });
+        }
+        eprintln!(
+            "note: {ckpt_label}: resuming with a changed case ({})",
+            list_changes(&changes)
+        );
+    }
+    let payload = sealed.map(|s| s.payload);
     // ---- static stage (owner: static; docs/static_stage.md) ---------------------------
     // Run it (writing static.vtu, static_histories.csv, static_summary.json) or restore it
-    // from the checkpoint; the dynamic stage starts from its state. Every checkpoint begins
-    // with its block (`static_run::write_static`).
+    // from the checkpoint; the dynamic stage starts from its state. Every checkpoint's
+    // payload begins with its block (`static_run::write_static`).
     let staged = crate::static_run::run_static_stage(
         case.model,
         case.static_plan.as_ref(),
         out,
-        resume_bytes.as_deref().map(|b| (b, ckpt_label.as_str())),
+        payload.map(|b| (b, ckpt_label.as_str())),
         &label,
     )?;
     let static_result = staged.result;
     let mut sim = crate::static_run::start(staged.model, static_result.as_ref(), dt, case.safety)?;
     if staged.fresh {
-        write_atomic_with(&checkpoint, |w| {
-            crate::static_run::write_static(w, static_result.as_ref(), &sim.model)?;
-            write_checkpoint(w, &sim)?;
-            write_peaks(w, &[Peak::default(); 2])
-        })?;
+        write_checkpoint_file(
+            &checkpoint,
+            &fingerprint,
+            static_result.as_ref(),
+            &sim,
+            &[Peak::default(); 2],
+        )?;
     }
     // ---- end of the static stage hook ---------------------------------------------------
     let columns = HistoryColumns::new(&case.probes, &sim);
     let header = columns.header(&sim);
     let mut resumed_from = None;
-    if let Some(bytes) = &resume_bytes {
+    if let Some(bytes) = payload {
         read_checkpoint(&bytes[staged.dynamic_offset..], &ckpt_label, &mut sim)?;
         resumed_from = Some(sim.step);
     }
@@ -564,20 +644,12 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
     };
     remove_stale_files(out, &pvd)?;
     let bar = if opts.progress {
-        let b = ProgressBar::with_draw_target(Some(total_steps), ProgressDrawTarget::stderr());
-        b.set_style(
-            ProgressStyle::with_template("{bar:30} step {pos}/{len} {msg} ETA {eta}")
-                .expect("valid template"),
-        );
-        b.set_position(sim.step);
-        b
+        crate::progress::run_bar(ProgressDrawTarget::stderr(), total_steps, sim.step, dt)
     } else {
         ProgressBar::hidden()
     };
     let n_elements = sim.model.n_elements();
-    let [mut peak_u, mut peak_v] = resume_bytes
-        .as_deref()
-        .map_or([Peak::default(); 2], read_peaks);
+    let [mut peak_u, mut peak_v] = payload.map_or([Peak::default(); 2], read_peaks);
     let mut row = Vec::with_capacity(header.len());
     let start_step = sim.step;
     let t0 = Instant::now();
@@ -633,20 +705,18 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
         // to a later end continues from the last full-step checkpoint).
         if output.checkpoint_every > 0 && sim.step % output.checkpoint_every == 0 && sim.on_grid() {
             hist.flush()?;
-            write_atomic_with(&checkpoint, |w| {
-                crate::static_run::write_static(w, static_result.as_ref(), &sim.model)?;
-                write_checkpoint(w, &sim)?;
-                write_peaks(w, &[peak_u, peak_v])
-            })?;
+            write_checkpoint_file(
+                &checkpoint,
+                &fingerprint,
+                static_result.as_ref(),
+                &sim,
+                &[peak_u, peak_v],
+            )?;
         }
         if sim.step % 64 == 0 {
             let el = t0.elapsed().as_secs_f64().max(1e-9);
             let rate = (sim.step - start_step) as f64 * n_elements as f64 / el;
-            bar.set_position(sim.step);
-            bar.set_message(format!(
-                "t = {:.4e} s, {:.3e} element-updates/s",
-                sim.time, rate
-            ));
+            crate::progress::update(&bar, sim.step, rate);
         }
     }
     bar.finish_and_clear();
@@ -677,6 +747,7 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
         peak_displacement: peak_u,
         peak_velocity: peak_v,
         resumed_from_step: resumed_from,
+        resumed_with_changes: changes,
         probes: columns.probes,
     };
     write_summary(&out.join("summary.json"), &summary)?;

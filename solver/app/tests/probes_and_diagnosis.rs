@@ -70,6 +70,7 @@ fn run_histories(text: &str, name: &str) -> (Vec<String>, Vec<Vec<f64>>) {
             out: dir.clone(),
             resume: false,
             progress: false,
+            ..Default::default()
         },
     )
     .unwrap();

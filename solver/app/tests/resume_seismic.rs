@@ -81,6 +81,7 @@ fn resumed_seismic_run_matches_uninterrupted_run() {
         out: out.to_path_buf(),
         resume,
         progress: false,
+        ..Default::default()
     };
     let text = CASE.to_string();
     let full_dir = dir.join("full");

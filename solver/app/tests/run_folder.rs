@@ -56,6 +56,7 @@ fn run(text: &str, out: &Path, resume: bool) -> RunSummary {
             out: out.to_path_buf(),
             resume,
             progress: false,
+            ..Default::default()
         },
     )
     .unwrap()
@@ -197,6 +198,7 @@ fn a_resumed_run_with_yielding_anchors_matches_an_uninterrupted_run() {
                 out: out.to_path_buf(),
                 resume,
                 progress: false,
+                ..Default::default()
             },
         )
         .unwrap()

@@ -49,6 +49,7 @@ fn resumed_run_matches_uninterrupted_run() {
         out: out.to_path_buf(),
         resume,
         progress: false,
+        ..Default::default()
     };
     let case = parse_case(SMALL, "small.toml", Path::new(".")).unwrap();
     let full = run_case(case, &opts(&full_dir, false)).unwrap();
@@ -138,6 +139,7 @@ fn resumed_contact_run_matches_uninterrupted_run() {
         out: out.to_path_buf(),
         resume,
         progress: false,
+        ..Default::default()
     };
     let full = run_case(
         parse_case(SLIDING, "s.toml", Path::new(".")).unwrap(),

@@ -5,6 +5,7 @@
 //! `docs/case_format.md`.
 
 mod build;
+pub mod fingerprint;
 pub mod probes;
 mod schema;
 mod static_schema;

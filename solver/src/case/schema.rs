@@ -61,7 +61,14 @@ pub struct TimeSection {
     /// Safety factor on the critical step.
     #[serde(default = "default_safety")]
     pub safety: f64,
+    /// Step budget: `dcfm run` refuses a case of more steps unless given `--allow-long`
+    /// (default [`DEFAULT_MAX_STEPS`]).
+    #[serde(default)]
+    pub max_steps: Option<f64>,
 }
+
+/// Default step budget of `[time] max_steps`.
+pub const DEFAULT_MAX_STEPS: u64 = 100_000_000;
 
 fn default_safety() -> f64 {
     0.9

@@ -41,12 +41,15 @@ pub struct InterfaceSpec {
     /// Paired (default) or surface.
     #[serde(default)]
     pub mode: ContactMode,
-    /// Slip (m) after which a pair leaves point-to-point contact; overrides the fraction.
+    /// Slip (m) after which a pair leaves point-to-point contact; not together with
+    /// `slip_threshold_fraction`.
     #[serde(default)]
     pub slip_threshold: Option<f64>,
-    /// Slip threshold as a fraction of the local element size √(mean adjacent face area).
-    #[serde(default = "default_slip_fraction")]
-    pub slip_threshold_fraction: f64,
+    /// Slip threshold as a fraction of the local element size √(mean adjacent face area);
+    /// default 0.5 ([`InterfaceSpec::slip_fraction`]). An option so that setting it beside
+    /// `slip_threshold` is seen (an error), not silently overridden.
+    #[serde(default)]
+    pub slip_threshold_fraction: Option<f64>,
     /// Pairing / penetration tolerance as a fraction of the shortest interface face edge.
     #[serde(default = "default_tolerance")]
     pub tolerance: f64,
@@ -66,6 +69,12 @@ fn default_tolerance() -> f64 {
 }
 
 impl InterfaceSpec {
+    /// The slip threshold as a fraction of the local element size (default 0.5).
+    pub fn slip_fraction(&self) -> f64 {
+        self.slip_threshold_fraction
+            .unwrap_or_else(default_slip_fraction)
+    }
+
     /// A paired interface with the default slip threshold and tolerance.
     pub fn new(
         name: &str,
@@ -85,7 +94,7 @@ impl InterfaceSpec {
             tensile_strength: None,
             mode: ContactMode::Paired,
             slip_threshold: None,
-            slip_threshold_fraction: default_slip_fraction(),
+            slip_threshold_fraction: None,
             tolerance: default_tolerance(),
             b_may_extend: false,
         }

@@ -77,13 +77,27 @@ fn check_params(spec: &InterfaceSpec, k: usize, file: &str) -> Result<()> {
             ));
         }
     }
-    if !(spec.slip_threshold_fraction.is_finite() && spec.slip_threshold_fraction > 0.0) {
-        return Err(DcfmError::invalid(
-            file,
-            f("slip_threshold_fraction"),
-            spec.slip_threshold_fraction,
-            "must be finite and > 0",
-        ));
+    if let Some(fr) = spec.slip_threshold_fraction {
+        if !(fr.is_finite() && fr > 0.0) {
+            return Err(DcfmError::invalid(
+                file,
+                f("slip_threshold_fraction"),
+                fr,
+                "must be finite and > 0",
+            ));
+        }
+        if let Some(s) = spec.slip_threshold {
+            return Err(DcfmError::invalid(
+                file,
+                f("slip_threshold_fraction"),
+                fr,
+                format!(
+                    "set together with {} = {s}: give either the slip threshold in metres \
+                     or the fraction of the element size, not both",
+                    f("slip_threshold")
+                ),
+            ));
+        }
     }
     if !(spec.tolerance.is_finite() && spec.tolerance > 0.0 && spec.tolerance < 0.5) {
         return Err(DcfmError::invalid(
@@ -288,9 +302,7 @@ pub(super) fn build_interface(
             partner: NONE,
             area: ga.area[i],
             normal: scale(1.0 / norm(ga.area_vec[i]), ga.area_vec[i]),
-            slip_threshold: spec
-                .slip_threshold
-                .unwrap_or(spec.slip_threshold_fraction * h),
+            slip_threshold: spec.slip_threshold.unwrap_or(spec.slip_fraction() * h),
             surface: spec.mode == ContactMode::Surface,
             state: if spec.mode == ContactMode::Surface {
                 PairState::Separated

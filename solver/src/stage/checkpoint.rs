@@ -1,16 +1,19 @@
 //! Checkpoints of a running simulation, so that long runs can be resumed: displacements,
 //! half-step velocities, accelerations, energies, every integration-point state and the
 //! state of every contact interface, the absorbing boundaries and the anchor bars, as
-//! little-endian bytes. The core only serialises;
-//! the application writes the bytes to a file (atomically) and reads them back.
+//! little-endian bytes. The core only serialises (the file around the blocks, with its
+//! checksum and case hash, is [`crate::stage::checkpoint_seal`]); the application writes
+//! the bytes to a file (atomically) and reads them back.
 
 use std::io::Write;
 
 use crate::error::{DcfmError, Result};
 use crate::stage::{Energies, Simulation};
 
-/// Version 4 adds the anchor bars' state (plastic strains, bond–slip nodes).
-const MAGIC: &[u8; 8] = b"DCFMCKP4";
+/// Magic of the dynamic state block. Version 4 added the anchor bars' state (plastic
+/// strains, bond–slip nodes); from file format DCFMCKP5 the block sits inside the sealed
+/// file of [`crate::stage::checkpoint_seal`], which checks versions, case and checksum.
+const MAGIC: &[u8; 8] = b"DCFMDYN5";
 
 fn put_f64s(w: &mut impl Write, xs: &[f64]) -> std::io::Result<()> {
     for x in xs {
@@ -144,14 +147,9 @@ pub fn read_checkpoint(bytes: &[u8], file: &str, sim: &mut Simulation) -> Result
     };
     let magic = r.take(8)?;
     if magic != MAGIC {
-        let message = if magic.starts_with(b"DCFMCKP") {
-            "a checkpoint of an older dcfm version (no anchor bar state): run without --resume"
-        } else {
-            "not a dcfm checkpoint (bad magic)"
-        };
         return Err(DcfmError::Parse {
             file,
-            message: message.into(),
+            message: "no dynamic state block where the checkpoint should hold one".into(),
         });
     }
     let n = r.u64()?;

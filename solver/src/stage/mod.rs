@@ -2,6 +2,7 @@
 //! explicit dynamic driver and its energy accounting.
 
 pub mod checkpoint;
+pub mod checkpoint_seal;
 pub mod dynamic;
 pub mod energy;
 pub mod schedule;

@@ -42,6 +42,31 @@ pub struct Case {
     pub motions: crate::motion::Motions,
     /// The static stage (`[static]`), run before the dynamic stage.
     pub static_plan: Option<crate::stage::static_stage::StaticPlan>,
+    /// Most steps a run may take without being asked to (`time.max_steps`).
+    pub max_steps: u64,
+    /// Hashes of the case's fields and its mesh, written into checkpoints so that a
+    /// resume can refuse a checkpoint of another case.
+    pub fingerprint: crate::case::fingerprint::CaseFingerprint,
+}
+
+impl Case {
+    /// Steps from 0 to the end time: ⌈end/Δt⌉ (a float: a mistyped end time may give more
+    /// than a u64 holds).
+    pub fn step_count(&self) -> f64 {
+        time::step_count(self.end, self.dt)
+    }
+
+    /// The step count, checked against the step budget `time.max_steps` (above it an
+    /// error naming the fields, unless `allow_long`) and against 2⁵³ (always an error).
+    pub fn checked_step_count(&self, allow_long: bool) -> Result<u64> {
+        time::check_step_budget(
+            &self.file.display().to_string(),
+            self.end,
+            self.dt,
+            self.max_steps,
+            allow_long,
+        )
+    }
 }
 
 /// Read, parse and build a case file.
@@ -70,7 +95,13 @@ pub fn parse_case_with_motions(
         file: label.to_string(),
         message: e.to_string().trim_end().to_string(),
     })?;
-    build(file, label, dir, given)
+    let mut case = build(file, label, dir, given)?;
+    case.fingerprint = crate::case::fingerprint::CaseFingerprint::new(text, &case.model.mesh)
+        .map_err(|message| DcfmError::Parse {
+            file: label.to_string(),
+            message,
+        })?;
+    Ok(case)
 }
 
 fn build(
@@ -79,7 +110,7 @@ fn build(
     dir: &Path,
     given: &crate::motion::Motions,
 ) -> Result<Case> {
-    time::check_time(&file.time, label)?;
+    let max_steps = time::check_time(&file.time, label)?;
     let motions = motions::build_motions(&mut file, label, dir, given)?;
     let mut mesh = mesh::build_mesh(&file.mesh, label, dir)?;
     mesh::add_node_sets(&mut mesh, &file.node_sets, label)?;
@@ -117,5 +148,7 @@ fn build(
         probes,
         motions,
         static_plan,
+        max_steps,
+        fingerprint: Default::default(),
     })
 }

@@ -1,12 +1,17 @@
-//! `[time]`: end time, safety factor and the time step.
+//! `[time]`: end time, safety factor, the time step and the step budget.
 
-use crate::case::schema::TimeSection;
+use crate::case::schema::{TimeSection, DEFAULT_MAX_STEPS};
 use crate::error::{DcfmError, Result};
 
 use super::checks::finite_positive;
 
-/// Check the fields of `[time]` that do not need the model.
-pub(super) fn check_time(section: &TimeSection, label: &str) -> Result<()> {
+/// Most steps a run can count: beyond 2⁵³ steps t + Δt rounds back to t in double
+/// precision and the simulated time stops advancing.
+const MAX_COUNTABLE_STEPS: f64 = 9_007_199_254_740_992.0;
+
+/// Check the fields of `[time]` that do not need the model; the step budget
+/// (`time.max_steps`, default [`DEFAULT_MAX_STEPS`]).
+pub(super) fn check_time(section: &TimeSection, label: &str) -> Result<u64> {
     finite_positive(label, "time.end", section.end, "s")?;
     if !(section.safety.is_finite() && section.safety > 0.0 && section.safety <= 1.0) {
         return Err(DcfmError::invalid(
@@ -19,5 +24,62 @@ pub(super) fn check_time(section: &TimeSection, label: &str) -> Result<()> {
     if let Some(dt) = section.dt {
         finite_positive(label, "time.dt", dt, "s")?;
     }
-    Ok(())
+    match section.max_steps {
+        None => Ok(DEFAULT_MAX_STEPS),
+        Some(m) if m.is_finite() && m >= 1.0 && m.fract() == 0.0 && m <= MAX_COUNTABLE_STEPS => {
+            Ok(m as u64)
+        }
+        Some(m) => Err(DcfmError::invalid(
+            label,
+            "time.max_steps",
+            m,
+            "a whole number of steps from 1 to 2^53",
+        )),
+    }
+}
+
+/// Number of steps of a run from 0 to `end` with steps of `dt`: ⌈end/Δt⌉.
+pub(super) fn step_count(end: f64, dt: f64) -> f64 {
+    (end / dt).ceil()
+}
+
+/// Check the step count of `[time]` against the step budget `max_steps`: above it is an
+/// error naming `time.end`, `time.max_steps` and the way to allow it (`allow_long`, the
+/// `--allow-long` flag of `dcfm run`); above 2⁵³ steps it is an error even when allowed.
+pub(super) fn check_step_budget(
+    label: &str,
+    end: f64,
+    dt: f64,
+    max_steps: u64,
+    allow_long: bool,
+) -> Result<u64> {
+    let steps = step_count(end, dt);
+    let count = format!(
+        "{} steps of Δt = {dt:.4e} s",
+        crate::readable::engineering(steps)
+    );
+    if steps > max_steps as f64 && !allow_long {
+        return Err(DcfmError::invalid(
+            label,
+            "time.end",
+            end,
+            format!(
+                "{count}, above the step budget time.max_steps = {}: check the end time and \
+                 the units, raise time.max_steps, or run with --allow-long",
+                crate::readable::engineering(max_steps as f64)
+            ),
+        ));
+    }
+    if steps.is_nan() || steps > MAX_COUNTABLE_STEPS {
+        return Err(DcfmError::invalid(
+            label,
+            "time.end",
+            end,
+            format!(
+                "{count}: more than 2^53 steps, after which t + Δt = t in double precision \
+                 and the time stops advancing"
+            ),
+        ));
+    }
+    Ok(steps as u64)
 }

@@ -38,6 +38,8 @@ pub fn run_stage(
         probes,
         motions,
         static_plan,
+        max_steps,
+        fingerprint,
     } = built;
     let pool = crate::simulation::thread_pool(threads)?;
     let t0 = Instant::now();
@@ -68,6 +70,8 @@ pub fn run_stage(
             probes,
             motions,
             static_plan,
+            max_steps,
+            fingerprint,
         },
         result,
         wall,

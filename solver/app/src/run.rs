@@ -532,14 +532,15 @@ fn remove_stale_files(out: &Path, pvd: &PvdCollection) -> Result<()> {
 /// Run a case to its end time, writing outputs under `opts.out`.
 pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
     // A runaway (end time or step mistyped) is refused before anything is written.
-    let total_steps = case.checked_step_count(opts.allow_long)?;
+    case.checked_step_count(opts.allow_long)?;
     let out = &opts.out;
     std::fs::create_dir_all(out).map_err(|e| DcfmError::io(out.display().to_string(), e))?;
     let label = case.file.display().to_string();
     let title = case.title.clone();
     let dt = case.dt;
     let output = case.output.clone();
-    let schedule = StepSchedule::new(case.end, dt);
+    let end = case.end;
+    let schedule = StepSchedule::new(end, dt);
     let total_steps = schedule.steps;
     let fingerprint = case.fingerprint.clone();
     let checkpoint = out.join("checkpoint.bin");

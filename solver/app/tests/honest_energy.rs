@@ -24,6 +24,7 @@ fn run(text: &str, name: &str) -> (RunSummary, serde_json::Value, Vec<String>, V
             out: dir.clone(),
             resume: false,
             progress: false,
+            ..Default::default()
         },
     )
     .unwrap();

@@ -62,6 +62,7 @@ fn run(text: &str, out: &Path) -> RunSummary {
             out: out.to_path_buf(),
             resume: false,
             progress: false,
+            ..Default::default()
         },
     )
     .unwrap()

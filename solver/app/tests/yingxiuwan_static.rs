@@ -7,8 +7,6 @@
 //! swung between 4e-4 and 4e-3 over 29,000 iterations — and bonded pairs at the junctions
 //! penetrated by 0.14–0.58 mm.)
 
-use std::path::Path;
-
 use dcfm::case::parse_case;
 use dcfm::stage::static_stage;
 use dcfm_app::mesh_cmd::{mesh_yingxiuwan, MeshRequest};

@@ -12,7 +12,7 @@
 //! the latest forces of the others in the predictor (its own forces of the previous sweep
 //! taken back and its records restored to the start of the step, keeping what the step has
 //! learnt: a pair that slid keeps μd, a broken bond stays broken), until no force of the
-//! group changes by more than 1e-12 of the largest. After the first sweep only the pairs at
+//! group changes by more than [`TOLERANCE`] of the largest. After the first sweep only the pairs at
 //! a junction (node or partner on another interface) and the point-to-surface parts can
 //! change; the other pairs are not solved again. At convergence every pair and
 //! point-to-surface node satisfies its contact law with the forces of all the others, as
@@ -27,6 +27,12 @@ use crate::error::{DcfmError, Result};
 
 /// Most sweeps of a group's joint solve.
 const MAX_SWEEPS: usize = 2000;
+
+/// Largest change of any force of the group between two sweeps, relative to the largest
+/// force, at which the sweeps stop. 1e-10, not the 1e-12 of one interface's sweeps: where a
+/// light concrete node meets heavy rock nodes the sweeps converge slowly, and the Yingxiuwan
+/// CI case reached 6e-12 after 2000 sweeps at t = 1.18 s.
+const TOLERANCE: f64 = 1e-10;
 
 /// Groups of interfaces that share nodes (each sorted, groups ordered by their first
 /// interface), and the `junction` flag of every slave record whose node or partner is on
@@ -127,7 +133,7 @@ impl ContactSystem {
                 }
             }
             change /= fmax.max(f64::MIN_POSITIVE);
-            if sweep > 0 && change <= 1e-12 {
+            if sweep > 0 && change <= TOLERANCE {
                 for &k in members {
                     apply_switches(&mut interfaces[k]);
                 }

@@ -104,6 +104,122 @@ impl SofteningLaw {
     /// strength never decreases (max m ≤ 0, e.g. r = 1 with a = 0) there is no bound
     /// (`f64::INFINITY`).
     pub fn max_char_length(&self, e0: f64) -> f64 {
+        let mmax = self.max_softening_rate();
+        if mmax <= 0.0 {
+            f64::INFINITY
+        } else {
+            e0 * self.g_f / (self.f0 * self.f0 * (1.0 + 0.5 * self.a) * mmax)
+        }
+    }
+}
+
+/// Smallest share θ of the work to separation G/l that the softening branch dissipates
+/// under [`Regularisation::Total`] (the rest is the elastic energy released by the
+/// degradation). θ > 0 keeps b finite for the elements whose strength is reduced; with
+/// θ = 0 their response would be a vertical drop (the snap-back limit, Bažant & Oh 1983).
+pub const MIN_SOFTENING_SHARE: f64 = 0.05;
+
+/// How the softening law follows from the element's characteristic length l (crack band,
+/// Bažant & Oh 1983). See `docs/plastic_damage.md` §1 "Regularisation".
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default, serde::Deserialize)]
+#[serde(rename_all = "lowercase")]
+pub enum Regularisation {
+    /// The total work to separation per crack area is G: g = ∫f dε̃ᵖ = G/l − w_e, where
+    /// w_e is the elastic energy the degradation releases ([`SofteningLaw::released_elastic_energy`]).
+    /// An element too large for that (G/l < (w_e + g_min)/(1 − θ)) gets its strengths scaled
+    /// down by k, k² = (1 − θ) G / (l (w_e + g_min)), so that it stays free of snap-back and
+    /// still dissipates exactly G per area (Bažant & Oh 1983; Jirásek & Bauer 2012).
+    Total,
+    /// Lee & Fenves (1998): the plastic dissipation g = ∫f dε̃ᵖ = G/l; the total work to
+    /// separation is G + l w_e per crack area. Elements larger than
+    /// [`SofteningLaw::max_char_length`] snap back and are rejected. The default until the
+    /// cases and snapshots have been compared under `Total` (docs/plastic_damage.md §4).
+    #[default]
+    Plastic,
+}
+
+/// A law for one element size: strengths scaled by `k`, scale `b`, dissipation density `g`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ElementLaw {
+    /// The law with f₀ scaled by `k` (shape a, ratio r and G unchanged).
+    pub law: SofteningLaw,
+    /// Strength factor k ∈ (0, 1] (1 unless the element is too large, see [`Regularisation`]).
+    pub k: f64,
+    /// Scale b = k f₀ (1 + a/2)/g (1/strain).
+    pub b: f64,
+    /// Softening (plastic) dissipation density g = ∫f dε̃ᵖ (J/m³).
+    pub g: f64,
+}
+
+impl SofteningLaw {
+    /// Elastic energy density released by the degradation when a uniaxial test is taken to
+    /// separation (J/m³), w_e = (1/2E₀) ∫₀^∞ c̄(y)² dD(y): uniaxially ε = ε̃ᵖ + c̄/E₀ and
+    /// σ = (1 − D) c̄, so ∫σ dε = g + (1/E₀)∫(1 − D) c̄ dc̄ = g + w_e (by parts, D: 0 → 1).
+    /// With c̄ = f₀[(1+a)e^(−(1−r)y) − a e^(−(2−r)y)] and dD = r e^(−ry) dy:
+    /// w_e = (f₀² r/2E₀) [(1+a)²/(2−r) − 2a(1+a)/(3−r) + a²/(4−r)] (f₀²/2E₀ for a = 0, r = 1).
+    pub fn released_elastic_energy(&self, e0: f64) -> f64 {
+        let (a, r) = (self.a, self.r);
+        let bracket =
+            (1.0 + a) * (1.0 + a) / (2.0 - r) - 2.0 * a * (1.0 + a) / (3.0 - r) + a * a / (4.0 - r);
+        self.f0 * self.f0 * r / (2.0 * e0) * bracket
+    }
+
+    /// Smallest g without snap-back (J/m³): dε/dy = 1/b + c̄′(y)/E₀ ≥ 0 with
+    /// c̄′ = −f₀ m(y) and b = f₀(1 + a/2)/g gives g ≥ f₀²(1 + a/2) max m/E₀ (0 when the
+    /// effective strength never softens), see [`Self::max_char_length`].
+    pub fn min_softening_energy(&self, e0: f64) -> f64 {
+        let m = self.max_softening_rate();
+        if m <= 0.0 {
+            0.0
+        } else {
+            self.f0 * self.f0 * (1.0 + 0.5 * self.a) * m / e0
+        }
+    }
+
+    /// The law of an element of characteristic length `l` (m) with initial modulus `e0`.
+    pub fn for_length(&self, l: f64, e0: f64, reg: Regularisation) -> ElementLaw {
+        let we = self.released_elastic_energy(e0);
+        self.for_length_with(l, reg, we, we + self.min_softening_energy(e0))
+    }
+
+    /// [`Self::for_length`] with w_e = `we` and w_e + g_min = `need` computed beforehand
+    /// (they depend on the material only; the update calls this once per point).
+    #[inline]
+    pub fn for_length_with(&self, l: f64, reg: Regularisation, we: f64, need: f64) -> ElementLaw {
+        let gl = self.g_f / l;
+        let (k, g) = match reg {
+            Regularisation::Plastic => (1.0, gl),
+            Regularisation::Total => {
+                let k2 = ((1.0 - MIN_SOFTENING_SHARE) * gl / need).min(1.0);
+                if k2 == 1.0 {
+                    (1.0, gl - we)
+                } else {
+                    (k2.sqrt(), gl - k2 * we)
+                }
+            }
+        };
+        let law = SofteningLaw {
+            f0: k * self.f0,
+            ..*self
+        };
+        ElementLaw {
+            law,
+            k,
+            b: law.f0 * (1.0 + 0.5 * self.a) / g,
+            g,
+        }
+    }
+
+    /// Largest characteristic length (m) at which [`Regularisation::Total`] keeps the full
+    /// strength: (1 − θ) G/(w_e + g_min).
+    pub fn full_strength_length(&self, e0: f64) -> f64 {
+        (1.0 - MIN_SOFTENING_SHARE) * self.g_f
+            / (self.released_elastic_energy(e0) + self.min_softening_energy(e0))
+    }
+
+    /// max over y ≥ 0 of m(y) = (1+a)(1−r)e^(−(1−r)y) − a(2−r)e^(−(2−r)y) (≤ 0: no softening
+    /// of the effective strength).
+    fn max_softening_rate(&self) -> f64 {
         let (a, r) = (self.a, self.r);
         let m = |y: f64| {
             (1.0 + a) * (1.0 - r) * (-(1.0 - r) * y).exp() - a * (2.0 - r) * (-(2.0 - r) * y).exp()
@@ -115,11 +231,7 @@ impl SofteningLaw {
                 mmax = mmax.max(m(arg.ln()));
             }
         }
-        if mmax <= 0.0 {
-            f64::INFINITY
-        } else {
-            e0 * self.g_f / (self.f0 * self.f0 * (1.0 + 0.5 * a) * mmax)
-        }
+        mmax
     }
 }
 

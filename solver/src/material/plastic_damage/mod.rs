@@ -9,32 +9,38 @@
 //!    non-associated hyperbolic Drucker–Prager potential of eq. (26) gives Δλ, εᵖₙ₊₁ and the
 //!    hardening variables; a return that does not converge is redone in 4, 16, 64 sub-steps;
 //! 4. optional Duvaut–Lions regularisation relaxes the state towards the inviscid one;
-//! 5. degradation D = 1 − (1 − D_c)(1 − s D_t), s = s₀ + (1 − s₀) r(σ̄) (eq. 24), and
-//!    σ = (1 − D) σ̄ (eq. 23).
+//! 5. degradation: σ from σ̄, D_t and D_c by the [`Recovery`] rule (`recovery.rs`): the
+//!    default from a Gibbs energy (no energy created on closing-crack cycles), or eq. (24)
+//!    D = 1 − (1 − D_c)(1 − s D_t), s = s₀ + (1 − s₀) r(σ̄), σ = (1 − D) σ̄ (eq. 23).
 //!
 //! The hardening variables are the equivalent plastic strains ε̃ᵖ_t, ε̃ᵖ_c, stored scaled by
-//! b (y = b ε̃ᵖ), which makes the stored state independent of the element size; b follows
-//! from the fracture energy and `PointContext::char_length` (crack band).
+//! b (y = b ε̃ᵖ), which makes the stored state independent of the element size; b (and, for
+//! elements too large for their fracture energy, a strength factor k) follows from the
+//! fracture energy and `PointContext::char_length` (crack band, [`Regularisation`]).
 
 mod hardening;
 mod params;
 mod potential;
 mod principal;
+mod recovery;
 mod return_mapping;
 mod yield_surface;
 
 #[cfg(test)]
 mod tests;
 
-pub use hardening::{compressive_shape, SofteningLaw};
+pub use hardening::{
+    compressive_shape, ElementLaw, Regularisation, SofteningLaw, MIN_SOFTENING_SHARE,
+};
 pub use params::{mohr_coulomb_fc, Constants, PlasticDamageParams};
+pub use recovery::Recovery;
 
 use crate::error::{DcfmError, Result};
 use crate::material::{Elastic, PointContext, Voigt};
 use potential::Potential;
 use principal::{principal_values, Spectral};
 use return_mapping::LocalProblem;
-use yield_surface::{invariants, tension_weight, YieldSurface};
+use yield_surface::{invariants, YieldSurface};
 
 /// Layout of the per-point state.
 mod slot {
@@ -46,7 +52,8 @@ mod slot {
     pub const Y_T: usize = 12;
     /// y_c = b_c ε̃ᵖ_c.
     pub const Y_C: usize = 13;
-    /// D of eq. (24) at the end of the last update.
+    /// D of eq. (24) at the end of the last update (a diagnostic under the consistent
+    /// recovery rule).
     pub const DAMAGE: usize = 14;
     /// Fracture energy density g_t κ_t + g_c κ_c (J/m³), Lee & Fenves (1998).
     pub const FRACTURE: usize = 15;
@@ -68,6 +75,9 @@ pub struct PlasticDamage {
     surface: YieldSurface,
     potential: Potential,
     max_element_size: f64,
+    /// (w_e, w_e + g_min) of the tension and the compression law (J/m³), for
+    /// [`SofteningLaw::for_length_with`].
+    release: [(f64, f64); 2],
     tol: f64,
 }
 
@@ -83,13 +93,22 @@ impl PlasticDamage {
     /// Validate the parameters of material `name` (errors: [`DcfmError::Material`]).
     pub fn new(name: &str, elastic: Elastic, p: &PlasticDamageParams) -> Result<Self> {
         let constants = params::validate(name, p)?;
-        let max_element_size = constants
-            .tension
-            .max_char_length(elastic.young)
-            .min(constants.compression.max_char_length(elastic.young));
+        let max_element_size = match constants.regularisation {
+            // Elements too large get reduced strengths instead (no snap-back by construction).
+            Regularisation::Total => f64::INFINITY,
+            Regularisation::Plastic => constants
+                .tension
+                .max_char_length(elastic.young)
+                .min(constants.compression.max_char_length(elastic.young)),
+        };
+        let release = [&constants.tension, &constants.compression].map(|law| {
+            let we = law.released_elastic_energy(elastic.young);
+            (we, we + law.min_softening_energy(elastic.young))
+        });
         Ok(Self {
             name: name.to_string(),
             elastic,
+            release,
             surface: YieldSurface {
                 alpha: constants.alpha,
                 gamma: constants.gamma,
@@ -154,16 +173,31 @@ impl PlasticDamage {
         })
     }
 
+    /// Tension and compression laws of an element of characteristic length `l` (m): the
+    /// strength factors k_t, k_c, scales b_t, b_c and dissipation densities g_t, g_c of the
+    /// material's [`Regularisation`].
+    pub fn element_laws(&self, l: f64) -> (ElementLaw, ElementLaw) {
+        let reg = self.constants.regularisation;
+        let [(wt, nt), (wc, nc)] = self.release;
+        (
+            self.constants.tension.for_length_with(l, reg, wt, nt),
+            self.constants.compression.for_length_with(l, reg, wc, nc),
+        )
+    }
+
     fn problem(&self, l: f64) -> LocalProblem<'_> {
+        let (t, c) = self.element_laws(l);
         LocalProblem {
             bulk: self.elastic.bulk(),
             mu: self.elastic.mu,
             surface: &self.surface,
             potential: &self.potential,
-            tension: &self.constants.tension,
-            compression: &self.constants.compression,
-            b_t: self.constants.tension.b(l),
-            b_c: self.constants.compression.b(l),
+            tension: t.law,
+            compression: c.law,
+            b_t: t.b,
+            b_c: c.b,
+            g_t: t.g,
+            g_c: c.g,
             tol: self.tol,
             max_iter: return_mapping::MAX_ITER,
         }
@@ -281,9 +315,9 @@ impl PlasticDamage {
             st.y_c = start.y_c + w * (st.y_c - start.y_c);
         }
 
-        let (t, c) = (&self.constants.tension, &self.constants.compression);
+        let (t, c) = (&pb.tension, &pb.compression);
         let eff = self.elastic.stress(&sub(strain, &st.plastic));
-        let d = self.degradation(&eff, st.y_t, st.y_c);
+        let (sig, d) = self.nominal(&eff, st.y_t, st.y_c);
         new[slot::PLASTIC..slot::PLASTIC + 6].copy_from_slice(&st.plastic);
         new[slot::STRAIN..slot::STRAIN + 6].copy_from_slice(strain);
         new[slot::Y_T] = st.y_t;
@@ -291,13 +325,12 @@ impl PlasticDamage {
         new[slot::DAMAGE] = d;
         let mut w = old[slot::FRACTURE];
         if st.y_t != start.y_t {
-            w += t.g(l) * (t.kappa(st.y_t) - t.kappa(start.y_t));
+            w += pb.g_t * (t.kappa(st.y_t) - t.kappa(start.y_t));
         }
         if st.y_c != start.y_c {
-            w += c.g(l) * (c.kappa(st.y_c) - c.kappa(start.y_c));
+            w += pb.g_c * (c.kappa(st.y_c) - c.kappa(start.y_c));
         }
         new[slot::FRACTURE] = w;
-        let sig = scale(&eff, 1.0 - d);
         // Total dissipation: trapezoidal work ½(σₙ + σₙ₊₁):Δε minus the change of the
         // recoverable energy ψ = ½ σ:(ε − εᵖ). Zero (and skipped) when neither the internal
         // variables nor D can have changed.
@@ -314,34 +347,30 @@ impl PlasticDamage {
         sig
     }
 
-    /// D = 1 − (1 − D_c)(1 − s D_t), s = s₀ + (1 − s₀) r(σ̄) (eq. 24).
+    /// Nominal stress σ and the D of eq. (24) for effective stress `eff` and hardening
+    /// y_t, y_c, by the material's [`Recovery`] rule (`recovery.rs`): σ = (1 − D) σ̄ (eq. 23)
+    /// for `LeeFenves`; from the Gibbs energy for `Consistent` (equal in uniaxial states),
+    /// whose D is reported as a diagnostic only.
     #[inline]
-    fn degradation(&self, eff: &Voigt, y_t: f64, y_c: f64) -> f64 {
+    fn nominal(&self, eff: &Voigt, y_t: f64, y_c: f64) -> (Voigt, f64) {
         let dt = self.constants.tension.damage(y_t);
         let dc = self.constants.compression.damage(y_c);
-        if dt == 0.0 {
-            return dc;
-        }
         let s0 = self.constants.s0;
-        // r = 1 (0) when even the smallest (largest) principal stress bound, Ī₁/3 ∓ (2/3)q,
-        // is ≥ 0 (≤ 0); otherwise from the eigenvalues.
-        let (i1, q) = invariants(eff);
-        let r = if i1 / 3.0 - 2.0 * q / 3.0 >= 0.0 {
-            1.0
-        } else if i1 / 3.0 + 2.0 * q / 3.0 <= 0.0 {
-            0.0
-        } else {
-            tension_weight(&principal_values(eff))
+        let d = recovery::lee_fenves_damage(eff, dt, dc, s0);
+        let sig = match self.constants.recovery {
+            Recovery::LeeFenves => scale(eff, 1.0 - d),
+            Recovery::Consistent => {
+                recovery::consistent_stress(eff, dt, dc, s0, self.elastic.poisson)
+            }
         };
-        let s = s0 + (1.0 - s0) * r;
-        1.0 - (1.0 - dc) * (1.0 - s * dt)
+        (sig, d)
     }
 
-    /// σ = (1 − D) E₀ : (ε − εᵖ) for an updated state (eq. 23), D re-evaluated at this strain.
+    /// Nominal stress at total strain `strain` for an updated state (eqs. 23–24, by the
+    /// [`Recovery`] rule), D re-evaluated at this strain.
     pub fn stress_from_state(&self, strain: &Voigt, state: &[f64]) -> Voigt {
         let eff = self.effective_stress(strain, state);
-        let d = self.degradation(&eff, state[slot::Y_T], state[slot::Y_C]);
-        scale(&eff, 1.0 - d)
+        self.nominal(&eff, state[slot::Y_T], state[slot::Y_C]).0
     }
 
     /// σ̄ = E₀ : (ε − εᵖ) (eq. 23).
@@ -350,13 +379,15 @@ impl PlasticDamage {
             .stress(&sub(strain, &voigt(&state[slot::PLASTIC..])))
     }
 
-    /// F of eq. (25) (Pa) at `strain` with the hardening of `state`; ≤ 0 inside.
-    pub fn yield_function(&self, strain: &Voigt, state: &[f64]) -> f64 {
+    /// F of eq. (25) (Pa) at `strain` with the hardening of `state`, for an element of
+    /// characteristic length `l` (m; its strengths, [`Self::element_laws`]); ≤ 0 inside.
+    pub fn yield_function(&self, strain: &Voigt, state: &[f64], l: f64) -> f64 {
         let s = principal_values(&self.effective_stress(strain, state));
+        let (t, c) = self.element_laws(l);
         self.surface.value(
             &s,
-            self.constants.tension.effective(state[slot::Y_T]),
-            self.constants.compression.effective(state[slot::Y_C]),
+            t.law.effective(state[slot::Y_T]),
+            c.law.effective(state[slot::Y_C]),
         )
     }
 
@@ -387,12 +418,12 @@ impl PlasticDamage {
 
     /// Equivalent tensile plastic strain ε̃ᵖ_t for characteristic length `l`.
     pub fn equivalent_plastic_strain_t(&self, s: &[f64], l: f64) -> f64 {
-        s[slot::Y_T] / self.constants.tension.b(l)
+        s[slot::Y_T] / self.element_laws(l).0.b
     }
 
     /// Equivalent compressive plastic strain ε̃ᵖ_c for characteristic length `l`.
     pub fn equivalent_plastic_strain_c(&self, s: &[f64], l: f64) -> f64 {
-        s[slot::Y_C] / self.constants.compression.b(l)
+        s[slot::Y_C] / self.element_laws(l).1.b
     }
 
     /// Plastic strain εᵖ (Voigt, engineering shear).
@@ -408,7 +439,8 @@ impl PlasticDamage {
     }
 
     /// Fracture energy density of Lee & Fenves (1998), g_t κ_t + g_c κ_c = ∫f_t dε̃ᵖ_t +
-    /// ∫f_c dε̃ᵖ_c (J/m³): what G/l_ch regularises. It measures the equivalent plastic strains
+    /// ∫f_c dε̃ᵖ_c (J/m³): what G/l_ch regularises under [`Regularisation::Plastic`]
+    /// (G/l_ch − w_e under [`Regularisation::Total`]). It measures the equivalent plastic strains
     /// against the uniaxial laws, so it differs from [`Self::dissipated_energy_density`]:
     /// uniaxially it omits the elastic energy released by degradation.
     pub fn fracture_energy_density(&self, s: &[f64]) -> f64 {

@@ -13,7 +13,8 @@
 //! (eq. 5.1-9) tensile value G_t = 73 f_c^0.18 N/m (f_c in MPa) and the compressive
 //! value G_c = 8.8 √f_c N/mm of Nakamura & Higai (2001).
 
-use super::hardening::{compressive_shape, ratio_from_damage, SofteningLaw};
+use super::hardening::{compressive_shape, ratio_from_damage, Regularisation, SofteningLaw};
+use super::recovery::Recovery;
 use crate::error::{DcfmError, Result};
 
 /// What the user writes in the case file's `plastic_damage` sub-table (SI units).
@@ -71,6 +72,16 @@ pub struct PlasticDamageParams {
     /// d_c = b_c, i.e. 1 − (1 + a_c)/(2 a_c) (0.404 for W10's a_c = 5.224).
     #[serde(default)]
     pub dc_peak: Option<f64>,
+    /// Crack-band regularisation: `"total"` (default; the total work to separation per
+    /// crack area is G, strengths reduced in elements too large for that) or `"plastic"`
+    /// (Lee & Fenves 1998: ∫f dε̃ᵖ = G/l). See `docs/plastic_damage.md` §1.
+    #[serde(default)]
+    pub regularisation: Regularisation,
+    /// Stiffness recovery on crack closure: `"consistent"` (default; from a Gibbs energy, no
+    /// energy created on any cycle) or `"lee_fenves"` (eq. 24 with s(σ̄)). See
+    /// `docs/plastic_damage.md` §1.
+    #[serde(default)]
+    pub recovery: Recovery,
 }
 
 fn default_dilation() -> f64 {
@@ -106,6 +117,8 @@ impl PlasticDamageParams {
             s0: 0.0,
             dt_half: None,
             dc_peak: None,
+            regularisation: Regularisation::default(),
+            recovery: Recovery::default(),
         }
     }
 
@@ -148,6 +161,10 @@ pub struct Constants {
     pub s0: f64,
     /// Viscosity (s).
     pub viscosity: f64,
+    /// Crack-band regularisation.
+    pub regularisation: Regularisation,
+    /// Stiffness-recovery rule.
+    pub recovery: Recovery,
 }
 
 /// Check the parameters and derive the model constants. Errors name the material and the
@@ -272,6 +289,8 @@ pub fn validate(name: &str, p: &PlasticDamageParams) -> Result<Constants> {
         hyper: p.eccentricity * ft0 * tan_psi,
         s0: p.s0,
         viscosity: p.viscosity,
+        regularisation: p.regularisation,
+        recovery: p.recovery,
     })
 }
 
@@ -377,6 +396,19 @@ mod tests {
             PlasticDamageParams::from_mohr_coulomb(2.18e6, 41.6, 1.97e6)
         );
         assert!(toml::from_str::<PlasticDamageParams>("ft0 = 1e6\nfc = 1e7\nbogus = 1\n").is_err());
+        assert_eq!(p.regularisation, Regularisation::Plastic);
+        let cb: PlasticDamageParams =
+            toml::from_str("ft0 = 1e6\nfc = 1e7\nregularisation = \"total\"\n").unwrap();
+        assert_eq!(cb.regularisation, Regularisation::Total);
+        assert_eq!(p.recovery, Recovery::LeeFenves);
+        let cr: PlasticDamageParams =
+            toml::from_str("ft0 = 1e6\nfc = 1e7\nrecovery = \"consistent\"\n").unwrap();
+        assert_eq!(cr.recovery, Recovery::Consistent);
+        let e =
+            toml::from_str::<PlasticDamageParams>("ft0 = 1e6\nfc = 1e7\nregularisation = \"x\"\n")
+                .unwrap_err()
+                .to_string();
+        assert!(e.contains("total") && e.contains("plastic"), "{e}");
     }
 
     #[test]

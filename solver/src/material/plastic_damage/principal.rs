@@ -98,6 +98,16 @@ impl Spectral {
         }
         t
     }
+
+    /// Σ cᵢ nᵢ⊗nᵢ as a stress-like Voigt vector (tensor shear).
+    #[inline]
+    pub fn stress_voigt(&self, c: &[f64; 3]) -> Voigt {
+        let mut t = self.strain_voigt(c);
+        for v in t[3..].iter_mut() {
+            *v *= 0.5;
+        }
+        t
+    }
 }
 
 #[cfg(test)]

@@ -32,14 +32,18 @@ pub struct LocalProblem<'a> {
     pub surface: &'a YieldSurface,
     /// Eq. (26).
     pub potential: &'a Potential,
-    /// Tension law.
-    pub tension: &'a SofteningLaw,
-    /// Compression law.
-    pub compression: &'a SofteningLaw,
+    /// Tension law of this element (strength scaled by the regularisation).
+    pub tension: SofteningLaw,
+    /// Compression law of this element.
+    pub compression: SofteningLaw,
     /// Scales b_t, b_c for this element's characteristic length.
     pub b_t: f64,
     /// See `b_t`.
     pub b_c: f64,
+    /// Softening dissipation densities g_t = ∫f_t dε̃ᵖ_t, g_c (J/m³) of this element.
+    pub g_t: f64,
+    /// See `g_t`.
+    pub g_c: f64,
     /// Convergence tolerance on F (Pa).
     pub tol: f64,
     /// Cap on the regula-falsi iterations ([`MAX_ITER`]).

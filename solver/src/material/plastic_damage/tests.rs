@@ -11,12 +11,26 @@ const FC: f64 = 24.1e6;
 const GT: f64 = 200.0;
 const GC: f64 = 1.0e4;
 
+/// W10 states its references for the Lee–Fenves regularisation g = ∫σ dεᵖ = G/l_ch and
+/// the stiffness recovery of eq. (24).
 fn w10() -> PlasticDamage {
+    w10_with(Regularisation::Plastic)
+}
+
+fn w10_with(regularisation: Regularisation) -> PlasticDamage {
+    w10_rules(regularisation, Recovery::LeeFenves)
+}
+
+fn w10_rules(regularisation: Regularisation, recovery: Recovery) -> PlasticDamage {
     let el = Elastic::new("w10", E0, NU, 2400.0).unwrap();
     PlasticDamage::new(
         "w10",
         el,
-        &PlasticDamageParams::from_strengths(FT0, FC0, FC, GT, GC),
+        &PlasticDamageParams {
+            regularisation,
+            recovery,
+            ..PlasticDamageParams::from_strengths(FT0, FC0, FC, GT, GC)
+        },
     )
     .unwrap()
 }
@@ -296,10 +310,20 @@ fn w10_stiffness_recovery_on_crack_closure() {
 
 #[test]
 fn cyclic_tension_then_compression_recovers_the_stiffness() {
+    cyclic_recovery(&w10());
+}
+
+#[test]
+fn consistent_recovery_has_the_same_uniaxial_slopes() {
+    // The consistent rule (Gibbs energy, recovery.rs) keeps the intent of eq. (24) in
+    // uniaxial stress: crack-open slope (1 − D_t) E0, closed slope E0 (s0 = 0, D_c = 0).
+    cyclic_recovery(&w10_rules(Regularisation::Plastic, Recovery::Consistent));
+}
+
+fn cyclic_recovery(m: &PlasticDamage) {
     // Crack in tension, unload, close: the compressive tangent is (1 − D_c) E0 = E0.
-    let m = w10();
     let b = m.constants().tension.b(1.0);
-    let mut d = Driver::new(&m, 1.0);
+    let mut d = Driver::new(m, 1.0);
     let e_peak = FT0 / E0 + 1.0 / b;
     for k in 1..=100 {
         d.uniaxial(0, e_peak * k as f64 / 100.0);
@@ -419,7 +443,7 @@ fn duvaut_lions_relaxes_halfway_when_dt_equals_viscosity() {
         assert!((pb[i] - 0.5 * pa[i]).abs() <= 1e-12 * pa[0], "{i}");
     }
     // The viscous stress lies above the inviscid surface (overstress).
-    assert!(viscous.yield_function(&eps, &b) > 0.0);
+    assert!(viscous.yield_function(&eps, &b, 1.0) > 0.0);
     assert!(s[0] > inviscid.stress_from_state(&eps, &a)[0]);
 }
 
@@ -432,10 +456,15 @@ fn table1_materials_reach_their_strengths() {
         (25e9, 0.17, 2.0e6, 46.0, 1.30e6),
     ] {
         let el = Elastic::new("t1", e, nu, 2500.0).unwrap();
+        // At the input strengths (the Lee–Fenves regularisation; the total one reduces
+        // them in elements of 2 m, see `table1_strength_reduction_under_total_regularisation`).
         let m = PlasticDamage::new(
             "t1",
             el,
-            &PlasticDamageParams::from_mohr_coulomb(c, phi, ft),
+            &PlasticDamageParams {
+                regularisation: Regularisation::Plastic,
+                ..PlasticDamageParams::from_mohr_coulomb(c, phi, ft)
+            },
         )
         .unwrap();
         let fc = mohr_coulomb_fc(c, phi);
@@ -460,6 +489,7 @@ fn snap_back_limit_is_reported_with_the_largest_element_size() {
     let el = Elastic::new("lining", E0, NU, 2400.0).unwrap();
     let p = PlasticDamageParams {
         dt_half: Some(0.2),
+        regularisation: Regularisation::Plastic,
         ..PlasticDamageParams::from_strengths(FT0, FC0, FC, 50.0, GC)
     };
     let m = PlasticDamage::new("lining", el, &p).unwrap();
@@ -494,7 +524,7 @@ fn large_increments_stay_finite_and_admissible() {
         let mut new = vec![0.0; 17];
         let s = m.update(&eps, &st, &mut new, &ctx);
         assert!(s.iter().all(|v| v.is_finite()), "{s:?}");
-        assert!(m.yield_function(&eps, &new) <= 1e-6 * FC0);
+        assert!(m.yield_function(&eps, &new, 0.5) <= 1e-6 * FC0);
         let dm = m.damage(&new);
         assert!((0.0..=1.0).contains(&dm));
         st = new;
@@ -569,9 +599,246 @@ fn sub_stepping_rescues_a_local_solve_that_does_not_converge() {
     st[slot::PLASTIC..slot::PLASTIC + 6].copy_from_slice(&rescued.plastic);
     st[slot::Y_T] = rescued.y_t;
     st[slot::Y_C] = rescued.y_c;
-    assert!(m.yield_function(&eps, &st) <= 1e-7 * FC0);
+    assert!(m.yield_function(&eps, &st, l) <= 1e-7 * FC0);
     // Closer to the converged state than the failed single step, and within 5 %.
     let gap = |a: &Internal| (a.y_c - exact.y_c).abs() / exact.y_c;
     assert!(gap(&rescued) < 0.05, "rescued gap {}", gap(&rescued));
     assert!(gap(&rescued) <= gap(&one) + 1e-12);
+}
+
+/// Uniaxial test of one point of size `l` along `axis` (0: tension, 2: compression) to
+/// y = `y_end` in `n` steps under the material's own regularisation: (peak |σ|, l ∫σ dε,
+/// l × tracked dissipation, l × tracked g κ, final state).
+fn work_to_separation(
+    m: &PlasticDamage,
+    l: f64,
+    axis: usize,
+    y_end: f64,
+    n: usize,
+) -> (f64, f64, f64, f64) {
+    let (t, c) = m.element_laws(l);
+    let mut d = Driver::new(m, l);
+    // Uniaxially ε = ε̃ᵖ + c̄(y)/E0 (c̄ grows to (1 + a) f0 in compression).
+    let e_end = if axis == 0 {
+        t.law.effective(y_end) / E0 + y_end / t.b
+    } else {
+        -(c.law.effective(y_end) / E0 + y_end / c.b)
+    };
+    let (mut w, mut e_prev, mut s_prev, mut peak) = (0.0, 0.0, 0.0, 0.0f64);
+    for k in 1..=n {
+        let e = e_end * k as f64 / n as f64;
+        let s = d.uniaxial(axis, e)[axis];
+        w += 0.5 * (s + s_prev) * (e - e_prev);
+        peak = peak.max(s.abs());
+        (e_prev, s_prev) = (e, s);
+    }
+    let psi = m.recoverable_energy_density(&d.strain, &d.state);
+    (
+        peak,
+        l * (w - psi),
+        l * m.dissipated_energy_density(&d.state),
+        l * m.fracture_energy_density(&d.state),
+    )
+}
+
+#[test]
+fn total_regularisation_dissipates_g_t_per_crack_area() {
+    // Crack band (Bažant & Oh 1983): the work to separation per crack area is G_t = 200 N/m
+    // within 2 % for l = 0.1, 0.5, 1, 7 m. The full strength is kept while
+    // l ≤ (1 − θ) 2E0 G_t/f_t0² = 1.402 m (a_t = 0, r = 1: w_e = f_t0²/2E0); at 7 m the
+    // strength is f_t,eff = √((1 − θ) 2E0 G_t/l) = 1.2978 MPa (1 %), and the softening part
+    // l g κ = G_t − l f²/(2E0) (θ G_t = 10 N/m at 7 m).
+    let m = w10_with(Regularisation::Total);
+    assert_eq!(m.max_element_size(), f64::INFINITY);
+    let theta = MIN_SOFTENING_SHARE;
+    for l in [0.1, 0.5, 1.0, 7.0] {
+        let f_eff = FT0.min(((1.0 - theta) * 2.0 * E0 * GT / l).sqrt());
+        let (peak, w, tracked, soft) = work_to_separation(&m, l, 0, 12.0, 1200);
+        eprintln!("l = {l}: peak {peak:.5e} (exp. {f_eff:.5e}), work {w:.2}, tracked {tracked:.2}, l g κ {soft:.2}");
+        assert!(
+            (peak - f_eff).abs() < 0.01 * f_eff,
+            "l = {l}: peak {peak} vs {f_eff}"
+        );
+        assert!((w - GT).abs() < 0.02 * GT, "l = {l}: work {w} J/m²");
+        assert!(
+            (tracked - GT).abs() < 0.02 * GT,
+            "l = {l}: tracked {tracked}"
+        );
+        let expect = GT - l * f_eff * f_eff / (2.0 * E0);
+        assert!(
+            (soft - expect).abs() < 0.02 * expect,
+            "l = {l}: g κ {soft} vs {expect}"
+        );
+    }
+    assert!(((1.0 - theta) * 2.0 * E0 * GT / (FT0 * FT0) - 1.402).abs() < 1e-3);
+}
+
+#[test]
+fn total_regularisation_dissipates_g_c_per_crushed_area() {
+    // The same for compression (a_c = 5.224, r = 1): w_e = (f_c0²/2E0)[(1 + a) + a²/3]
+    // = 41.7 kJ/m³, so the full strength is kept while l ≤ (1 − θ) G_c/w_e = 0.228 m;
+    // at 1 m the strengths scale by k = √((1 − θ) G_c/(l w_e)) = 0.477. Work to crushing
+    // per area G_c = 10⁴ N/m within 2 %.
+    let m = w10_with(Regularisation::Total);
+    let a = m.constants().compression.a;
+    let we = FC0 * FC0 / (2.0 * E0) * ((1.0 + a) + a * a / 3.0);
+    for l in [0.1, 1.0] {
+        let k = ((1.0 - MIN_SOFTENING_SHARE) * GC / (l * we))
+            .sqrt()
+            .min(1.0);
+        let (peak, w, tracked, _) = work_to_separation(&m, l, 2, 12.0, 2400);
+        eprintln!(
+            "compression l = {l}: peak {peak:.5e} (exp. {:.5e}), work {w:.1}, tracked {tracked:.1}",
+            k * FC
+        );
+        assert!(
+            (peak - k * FC).abs() < 0.01 * k * FC,
+            "l = {l}: peak {peak} vs {}",
+            k * FC
+        );
+        assert!((w - GC).abs() < 0.02 * GC, "l = {l}: work {w} J/m²");
+        assert!(
+            (tracked - GC).abs() < 0.02 * GC,
+            "l = {l}: tracked {tracked}"
+        );
+    }
+}
+
+#[test]
+fn plastic_regularisation_keeps_the_lee_fenves_total() {
+    // Under the Lee–Fenves regularisation the work to separation per area is
+    // G_t + l f_t0²/(2E0) (docs/plastic_damage.md §6): 213.55 N/m at 0.1 m, 1148.7 at 7 m.
+    let m = w10();
+    for l in [0.1, 7.0] {
+        let (_, w, _, _) = work_to_separation(&m, l, 0, 12.0, 1200);
+        let expect = GT + l * FT0 * FT0 / (2.0 * E0);
+        eprintln!("plastic l = {l}: work {w:.2} (exp. {expect:.2})");
+        assert!(
+            (w - expect).abs() < 0.02 * expect,
+            "l = {l}: {w} vs {expect}"
+        );
+    }
+}
+
+#[test]
+fn table1_strength_reduction_under_total_regularisation() {
+    // Table 1 (docs/plastic_damage.md §4), r = 1, a_t = 0, a_c = 3 + 2√2:
+    // k_t = min(1, √((1 − θ) 2E0 G_t/(l f_t0²))), k_c = min(1, √((1 − θ) G_c/(l w_e,c)))
+    // with w_e,c = (f_c0²/2E0)[(1 + a_c) + a_c²/3].
+    let theta = MIN_SOFTENING_SHARE;
+    for (e, nu, c, phi, ft) in [
+        (10e9, 0.25, 2.18e6, 41.6, 1.97e6),
+        (25e9, 0.17, 2.0e6, 46.0, 1.30e6),
+    ] {
+        let el = Elastic::new("t1", e, nu, 2500.0).unwrap();
+        let m = PlasticDamage::new(
+            "t1",
+            el,
+            &PlasticDamageParams {
+                regularisation: Regularisation::Total,
+                ..PlasticDamageParams::from_mohr_coulomb(c, phi, ft)
+            },
+        )
+        .unwrap();
+        let (t, cl) = (m.constants().tension, m.constants().compression);
+        let a = cl.a;
+        assert!((a - (3.0 + 2.0 * 2f64.sqrt())).abs() < 1e-12);
+        let wec = cl.f0 * cl.f0 / (2.0 * e) * ((1.0 + a) + a * a / 3.0);
+        for l in [0.5, 1.0, 2.0, 7.0] {
+            let (lt, lc) = m.element_laws(l);
+            let kt = ((1.0 - theta) * 2.0 * e * t.g_f / (l * ft * ft))
+                .sqrt()
+                .min(1.0);
+            let kc = ((1.0 - theta) * cl.g_f / (l * wec)).sqrt().min(1.0);
+            assert!((lt.k - kt).abs() < 1e-12, "l = {l}: k_t {} vs {kt}", lt.k);
+            assert!((lc.k - kc).abs() < 1e-12, "l = {l}: k_c {} vs {kc}", lc.k);
+            assert!(lt.g >= theta * t.g_f / l * (1.0 - 1e-12));
+            eprintln!(
+                "E {e:e} l {l}: f_t {:.3} MPa (k_t {:.3}), f_c {:.3} MPa (k_c {:.3})",
+                lt.law.peak() * 1e-6,
+                lt.k,
+                lc.law.peak() * 1e-6,
+                lc.k
+            );
+        }
+        // Driven: a 7 m element cracks at its reduced strength (1 %).
+        let l = 7.0;
+        let f_eff = ((1.0 - theta) * 2.0 * e * t.g_f / l).sqrt();
+        let mut d = Driver::new(&m, l);
+        let mut peak = 0.0f64;
+        for k in 1..=600 {
+            peak = peak.max(d.uniaxial(0, 3.0 * ft / e * k as f64 / 600.0)[0]);
+        }
+        assert!(
+            (peak - f_eff).abs() < 0.01 * f_eff,
+            "peak {peak} vs {f_eff}"
+        );
+    }
+}
+
+#[test]
+fn total_regularisation_has_no_snap_back_where_plastic_would() {
+    // The snap-back material of `snap_back_limit_is_reported_with_the_largest_element_size`
+    // (d_t < b_t: the effective strength softens). Under the total regularisation an element
+    // of 1.5 l_max(plastic) has dε/dy = 1/b + c̄′(y)/E0 > 0 everywhere (c̄′ by differences)
+    // and dissipates G_t = 50 N/m per area (2 %).
+    let el = Elastic::new("lining", E0, NU, 2400.0).unwrap();
+    let p = PlasticDamageParams {
+        dt_half: Some(0.2),
+        regularisation: Regularisation::Total,
+        ..PlasticDamageParams::from_strengths(FT0, FC0, FC, 50.0, GC)
+    };
+    let plastic = PlasticDamage::new(
+        "lining",
+        el,
+        &PlasticDamageParams {
+            regularisation: Regularisation::Plastic,
+            ..p.clone()
+        },
+    )
+    .unwrap();
+    let m = PlasticDamage::new("lining", el, &p).unwrap();
+    let l = 1.5 * plastic.max_element_size();
+    assert!(m.check_char_length(l).is_ok());
+    let (t, _) = m.element_laws(l);
+    assert!(t.k < 1.0);
+    for i in 0..400 {
+        let y = 0.05 * i as f64;
+        let h = 1e-6;
+        let slope = (t.law.effective(y + h) - t.law.effective(y)) / h;
+        assert!(1.0 / t.b + slope / E0 > 0.0, "y = {y}");
+    }
+    let (_, w, _, _) = work_to_separation(&m, l, 0, 14.0, 2000);
+    eprintln!(
+        "snap-back material at l = {l:.3} m (k_t {:.4}): work {w:.3}",
+        t.k
+    );
+    assert!((w - 50.0).abs() < 0.02 * 50.0, "work {w} J/m² at l = {l}");
+}
+
+#[test]
+fn consistent_recovery_stays_close_to_the_uniaxial_laws() {
+    // The consistent rule's crack compliance has no Poisson term, so in cracked uniaxial
+    // tension σ̄ gets a lateral tensile part and the yield check sees a slightly different
+    // state (docs/plastic_damage.md §1). Measured: the W10 tension curve departs from the
+    // eq. (24) closed form by at most 3.7 % (at y = 3, D_t = 0.95), and the work to
+    // separation per area under the total regularisation is 195.8 / 201.7 / 205.6 N/m at
+    // l = 0.1 / 1 / 7 m. Bounds asserted: 5 % for both.
+    let m = w10_rules(Regularisation::Plastic, Recovery::Consistent);
+    let b = m.constants().tension.b(1.0);
+    let curve = tension_curve(&m, 1.0, 3.0, 600);
+    let mut worst = 0.0f64;
+    for &(ep, s, _) in curve.iter().filter(|c| c.0 > 0.0) {
+        let exact = FT0 * (-b * ep).exp();
+        worst = worst.max((s - exact).abs() / exact);
+    }
+    eprintln!("consistent recovery: worst departure from the closed form {worst:.4}");
+    assert!(worst < 0.05, "worst {worst}");
+    let m = w10_rules(Regularisation::Total, Recovery::Consistent);
+    for l in [0.1, 1.0, 7.0] {
+        let (_, w, tracked, _) = work_to_separation(&m, l, 0, 12.0, 1200);
+        eprintln!("consistent recovery, total regularisation, l = {l}: work {w:.2} N/m");
+        assert!((w - GT).abs() < 0.05 * GT, "l = {l}: {w}");
+        assert!((tracked - w).abs() < 1e-6 * GT);
+    }
 }

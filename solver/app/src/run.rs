@@ -73,6 +73,10 @@ pub struct RunSummary {
     pub peak_displacement: Peak,
     pub peak_velocity: Peak,
     pub resumed_from_step: Option<u64>,
+    /// Steps (of this run, since its start or resume) in which interfaces that meet did not
+    /// settle to their tolerance and were accepted, and the largest relative force change
+    /// left (docs/contact.md §5a); (0, 0) when every step settled.
+    pub contact_unsettled_steps: (u64, f64),
     /// What changed in the case or mesh since the checkpoint the run resumed from
     /// (`--resume-with-changed-case`); empty otherwise.
     pub resumed_with_changes: Vec<String>,
@@ -748,6 +752,11 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
         peak_displacement: peak_u,
         peak_velocity: peak_v,
         resumed_from_step: resumed_from,
+        contact_unsettled_steps: sim
+            .model
+            .contact
+            .as_ref()
+            .map_or((0, 0.0), |c| c.unsettled_joint_steps()),
         resumed_with_changes: changes,
         probes: columns.probes,
     };

@@ -34,6 +34,13 @@ const MAX_SWEEPS: usize = 2000;
 /// CI case reached 6e-12 after 2000 sweeps at t = 1.18 s.
 const TOLERANCE: f64 = 1e-10;
 
+/// Largest change at which a group that has not settled in [`MAX_SWEEPS`] sweeps is still
+/// accepted (its last sweep kept), counted in [`ContactSystem::unsettled_joint_steps`] and
+/// reported in the run's summary; above it the step fails. In the Yingxiuwan CI case a
+/// junction hovered at 1e-11–1e-9 at t = 1.18 s, a cycle of its pairs' states rather than
+/// slow convergence.
+const ACCEPTED: f64 = 1e-6;
+
 /// Groups of interfaces that share nodes (each sorted, groups ordered by their first
 /// interface), and the `junction` flag of every slave record whose node or partner is on
 /// another interface. `n_nodes` bounds every node number.
@@ -139,6 +146,14 @@ impl ContactSystem {
                 }
                 return Ok(());
             }
+        }
+        if change <= ACCEPTED {
+            self.unsettled.0 += 1;
+            self.unsettled.1 = self.unsettled.1.max(change);
+            for &k in members {
+                apply_switches(&mut interfaces[k]);
+            }
+            return Ok(());
         }
         let names: Vec<&str> = members
             .iter()

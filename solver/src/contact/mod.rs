@@ -91,6 +91,9 @@ pub struct ContactSystem {
     /// Interfaces that share nodes, solved jointly (indices in input order; one group per
     /// interface that shares nothing). See [`joint`].
     groups: Vec<Vec<usize>>,
+    /// Steps in which a group of interfaces did not settle to its tolerance but was
+    /// accepted (`joint.rs`), and the largest relative force change left.
+    unsettled: (u64, f64),
 }
 
 impl ContactSystem {
@@ -123,7 +126,15 @@ impl ContactSystem {
             n_nodes: n,
             scratch: surface::Scratch::default(),
             groups,
+            unsettled: (0, 0.0),
         })
+    }
+
+    /// Steps (since the model was built or restored) in which a group of interfaces that
+    /// meet did not settle to its tolerance within its sweeps and was accepted, and the
+    /// largest relative force change left (see `joint.rs`).
+    pub fn unsettled_joint_steps(&self) -> (u64, f64) {
+        self.unsettled
     }
 
     /// True when the model has no interface.

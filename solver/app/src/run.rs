@@ -671,11 +671,13 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
             // checkpoint: checkpoint the last full step instead, so that a run resumed to
             // a later end starts one step before this end.
             hist.flush()?;
-            write_atomic_with(&checkpoint, |w| {
-                crate::static_run::write_static(w, static_result.as_ref(), &sim.model)?;
-                write_checkpoint(w, &sim)?;
-                write_peaks(w, &[peak_u, peak_v])
-            })?;
+            write_checkpoint_file(
+                &checkpoint,
+                &fingerprint,
+                static_result.as_ref(),
+                &sim,
+                &[peak_u, peak_v],
+            )?;
         }
         let taken = if last { sim.step_to(end) } else { sim.step() };
         taken.inspect_err(|_| {

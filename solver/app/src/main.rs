@@ -179,7 +179,7 @@ fn main() -> ExitCode {
                     c.dt,
                     c.safety,
                     engineering(c.end),
-                    engineering(schedule.steps as f64),
+                    engineering(c.step_count()),
                     if !schedule.shortened(c.dt) {
                         String::new()
                     } else if m.boundaries.is_some() {

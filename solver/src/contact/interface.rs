@@ -173,6 +173,4 @@ pub(crate) struct Interface {
     /// (node of surface a, index into `slaves`), sorted by node: the slave record of a
     /// node by binary search.
     pub slave_index: Vec<(u32, u32)>,
-    /// Forces of the previous sweep of the joint solve of a group of interfaces.
-    pub outer_prev: Vec<[f64; 3]>,
 }

@@ -94,6 +94,9 @@ pub struct ContactSystem {
     /// Steps in which a group of interfaces did not settle to its tolerance but was
     /// accepted (`joint.rs`), and the largest relative force change left.
     unsettled: (u64, f64),
+    /// Net contact force of each node of the group in the previous sweep of a joint solve
+    /// (`joint.rs`), in the order of `touched`; empty between solves.
+    joint_prev: Vec<[f64; 3]>,
 }
 
 impl ContactSystem {
@@ -127,6 +130,7 @@ impl ContactSystem {
             scratch: surface::Scratch::default(),
             groups,
             unsettled: (0, 0.0),
+            joint_prev: Vec::new(),
         })
     }
 

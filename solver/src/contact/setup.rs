@@ -356,7 +356,6 @@ pub(super) fn build_interface(
         snapshot: Vec::new(),
         prev_force: Vec::new(),
         slave_index,
-        outer_prev: Vec::new(),
     })
 }
 

@@ -9,6 +9,7 @@
 //!   the throughput targets of issues #2, #3, #4 and #7);
 //! - [`git`], [`timestamp`]: provenance of a record (commit, UTC time);
 //! - [`cputime`]: CPU time of the process, to flag runs starved by other processes;
+//! - [`memory`]: peak resident memory per case;
 //! - [`error`]: the runner's error type.
 
 pub mod cputime;
@@ -16,6 +17,7 @@ pub mod cube;
 pub mod error;
 pub mod git;
 pub mod history;
+pub mod memory;
 pub mod record;
 pub mod runner;
 pub mod speedup;

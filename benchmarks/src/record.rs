@@ -68,6 +68,14 @@ pub struct ThroughputRecord {
     /// `release`, or `debug` when built with debug assertions (numbers not comparable).
     #[serde(default)]
     pub profile: String,
+    /// Peak resident memory while the case was built and timed (bytes): `VmHWM`, reset
+    /// before the case where the kernel allows (`peak_rss_reset`). Absent off Linux.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub peak_rss_bytes: Option<u64>,
+    /// Whether the peak was reset before the case (false: it is the process's peak so far,
+    /// an upper bound for the case).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub peak_rss_reset: Option<bool>,
     /// Static direct-solve cases (`static_cholesky_cube*`): the phases, sizes and memory of
     /// the solve; `steps` is 1 and `wall_s` the whole static stage.
     #[serde(default, skip_serializing_if = "Option::is_none")]

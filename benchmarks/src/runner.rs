@@ -11,7 +11,7 @@ use dcfm::stage::Simulation;
 use crate::cube::{CubeMaterial, CubeSpec};
 use crate::error::BenchError;
 use crate::record::ThroughputRecord;
-use crate::{cputime, git, history, timestamp};
+use crate::{cputime, git, history, memory, timestamp};
 
 /// What to run and how long.
 #[derive(Clone, Debug, PartialEq)]
@@ -20,8 +20,14 @@ pub struct RunConfig {
     pub sizes: Vec<usize>,
     /// Integration rules (elastic cubes).
     pub integrations: Vec<Integration>,
-    /// Plastic-damage regimes, run with full integration at every size (issue #4).
+    /// Plastic-damage regimes, run at every size (issue #4) ...
     pub plastic_damage: Vec<CubeMaterial>,
+    /// ... with each of these integration rules, in this order (issue #11: one-point
+    /// plastic-damage, `cube{n}_one_point_pd_*`).
+    pub plastic_damage_integrations: Vec<Integration>,
+    /// Cube divisions of the one-point elastic cubes run after all the others, sizes
+    /// whose data do not fit in the caches as real models' do not (issue #11: 100³).
+    pub large_one_point_sizes: Vec<usize>,
     /// Time every size's fully integrated elastic cube also on seismic boundaries
     /// (`cube{n}_full_boundaries`: absorbing base with input, free-field sides), right
     /// after the fixed-base cube, for the boundaries' overhead per step (issue #7).
@@ -64,6 +70,8 @@ impl RunConfig {
                 CubeMaterial::PlasticDamageElastic,
                 CubeMaterial::PlasticDamageDamaging,
             ],
+            plastic_damage_integrations: vec![Integration::Full, Integration::OnePoint],
+            large_one_point_sizes: vec![100],
             static_sizes: vec![40],
             threads: vec![1, 2],
             warmup_steps: None,
@@ -76,10 +84,12 @@ impl RunConfig {
         }
     }
 
-    /// The CI smoke run: 4³ and 8³, ≥ 0.1 s each (about a second in all).
+    /// The CI smoke run: 4³ and 8³ (12³ for the large one-point cube), ≥ 0.1 s each
+    /// (about a second in all).
     pub fn quick() -> Self {
         Self {
             sizes: vec![4, 8],
+            large_one_point_sizes: vec![12],
             interface_sizes: vec![8],
             static_sizes: vec![8],
             min_wall_s: 0.1,
@@ -114,10 +124,11 @@ impl RunConfig {
                 .iter()
                 .map(|&i| CubeSpec::new(n, i))
                 .chain(boundaries);
-            let damage = self
-                .plastic_damage
-                .iter()
-                .map(|&m| CubeSpec::new(n, Integration::Full).with_material(m));
+            let damage = self.plastic_damage_integrations.iter().flat_map(|&i| {
+                self.plastic_damage
+                    .iter()
+                    .map(move |&m| CubeSpec::new(n, i).with_material(m))
+            });
             for spec in elastic.chain(damage) {
                 if self
                     .filter
@@ -126,6 +137,16 @@ impl RunConfig {
                 {
                     out.push(spec);
                 }
+            }
+        }
+        for &n in &self.large_one_point_sizes {
+            let spec = CubeSpec::new(n, Integration::OnePoint);
+            if self
+                .filter
+                .as_deref()
+                .is_none_or(|f| spec.name().contains(f))
+            {
+                out.push(spec);
             }
         }
         for &m in &self.interface_sizes {
@@ -142,7 +163,10 @@ impl RunConfig {
     }
 
     fn validate(&self) -> Result<(), BenchError> {
-        if self.sizes.contains(&0) || self.static_sizes.contains(&0) {
+        if self.sizes.contains(&0)
+            || self.static_sizes.contains(&0)
+            || self.large_one_point_sizes.contains(&0)
+        {
             return Err(BenchError::Config("cube sizes must be >= 1".into()));
         }
         if self.threads.is_empty() || self.threads.contains(&0) {
@@ -231,6 +255,7 @@ pub fn run(
     };
     let mut records = Vec::new();
     for spec in cases {
+        let reset = memory::reset_peak_rss();
         let mut sim = spec.simulation()?;
         let warmup = config.warmup_steps.unwrap_or(spec.divisions as u64 + 5);
         let bytes_per_element = sim.model.bytes_per_element();
@@ -270,6 +295,8 @@ pub fn run(
                 mode: config.mode.clone(),
                 contact_share,
                 profile: profile.to_string(),
+                peak_rss_bytes: memory::peak_rss_bytes(),
+                peak_rss_reset: Some(reset),
                 static_solve: None,
             };
             if let Some(path) = &config.history {
@@ -284,6 +311,7 @@ pub fn run(
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build()?;
+        let reset = memory::reset_peak_rss();
         let cpu0 = cputime::process_cpu_seconds();
         let (timing, wall_s, nodes) = pool.install(|| crate::static_solve::time_static_solve(n))?;
         let cpu_s = cputime::process_cpu_seconds().zip(cpu0).map(|(b, a)| b - a);
@@ -308,6 +336,8 @@ pub fn run(
             mode: config.mode.clone(),
             contact_share: None,
             profile: profile.to_string(),
+            peak_rss_bytes: memory::peak_rss_bytes(),
+            peak_rss_reset: Some(reset),
             static_solve: Some(timing),
         };
         if let Some(path) = &config.history {

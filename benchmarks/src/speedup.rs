@@ -87,6 +87,8 @@ mod tests {
             contact_share: None,
             mode: "quick".into(),
             profile: "release".into(),
+            peak_rss_bytes: None,
+            peak_rss_reset: None,
             static_solve: None,
         }
     }

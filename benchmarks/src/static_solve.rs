@@ -30,17 +30,15 @@ pub struct StaticSolveTiming {
     /// Bytes of K (values and row indices) and of L (values).
     pub stiffness_bytes: u64,
     pub factor_bytes: u64,
-    /// Peak resident memory of the process so far (VmHWM, Linux), bytes.
+    /// Peak resident memory (VmHWM, Linux) since the runner reset it before this case
+    /// (the record's `peak_rss_reset`), bytes.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub peak_rss_bytes: Option<u64>,
 }
 
-/// The process's peak resident set size from `/proc/self/status` (Linux), bytes.
+/// The process's peak resident set size (Linux), bytes: [`crate::memory::peak_rss_bytes`].
 pub fn peak_rss_bytes() -> Option<u64> {
-    let status = std::fs::read_to_string("/proc/self/status").ok()?;
-    let line = status.lines().find(|l| l.starts_with("VmHWM:"))?;
-    let kb: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
-    Some(kb * 1024)
+    crate::memory::peak_rss_bytes()
 }
 
 /// Case name of the static row of an n³ cube.

@@ -1,4 +1,4 @@
-//! The throughput targets of issues #2, #3, #4 and #7, checked against a set of records,
+//! The throughput targets of issues #2, #3, #4, #7 and #11 (the 100³ one-point cube), checked against a set of records,
 //! and the boundaries' overhead per step (issue #7).
 
 use crate::record::ThroughputRecord;
@@ -6,6 +6,9 @@ use crate::speedup::speedups;
 
 /// One-point 40³ on 2 threads: element updates per second.
 pub const ONE_POINT_40_RATE: f64 = 1.0e7;
+/// One-point elastic 100³ (out of cache) on 2 threads: element updates per second
+/// (issue #11).
+pub const ONE_POINT_100_RATE: f64 = 3.0e7;
 /// Fully integrated 40³ on 2 threads: element updates per second.
 pub const FULL_40_RATE: f64 = 4.0e6;
 /// Fully integrated plastic-damage 40³ in the elastic regime on 2 threads (issue #4).
@@ -88,6 +91,7 @@ pub fn check(records: &[ThroughputRecord]) -> Vec<TargetCheck> {
     let mut out = Vec::new();
     for (case, min) in [
         ("cube40_one_point", ONE_POINT_40_RATE),
+        ("cube100_one_point", ONE_POINT_100_RATE),
         ("cube40_full", FULL_40_RATE),
         ("cube40_full_pd_elastic", PLASTIC_DAMAGE_40_RATE),
     ] {

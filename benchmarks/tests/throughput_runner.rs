@@ -25,6 +25,8 @@ fn tiny(history: Option<PathBuf>) -> RunConfig {
         max_steps: 8,
         history,
         plastic_damage: Vec::new(),
+        plastic_damage_integrations: vec![Integration::Full],
+        large_one_point_sizes: Vec::new(),
         boundaries: false,
         interface_sizes: Vec::new(),
         static_sizes: Vec::new(),
@@ -56,6 +58,80 @@ fn plastic_damage_cubes_run_in_both_regimes() {
             r.bytes_per_element
         );
         assert!(r.element_updates_per_s > 0.0);
+    }
+}
+
+/// Issue #11 rows: one-point plastic-damage cubes in both regimes and the large one-point
+/// cube, with their peak memory; the standard and quick runs list them.
+#[test]
+fn one_point_plastic_damage_and_large_cube_rows() {
+    use dcfm_benchmarks::cube::CubeMaterial;
+    let config = RunConfig {
+        integrations: Vec::new(),
+        plastic_damage: vec![
+            CubeMaterial::PlasticDamageElastic,
+            CubeMaterial::PlasticDamageDamaging,
+        ],
+        plastic_damage_integrations: vec![Integration::OnePoint],
+        large_one_point_sizes: vec![6],
+        ..tiny(None)
+    };
+    let records = run(&config, |_| {}).expect("one-point plastic-damage run");
+    let names: Vec<(&str, usize)> = records
+        .iter()
+        .map(|r| (r.case.as_str(), r.threads))
+        .collect();
+    assert_eq!(
+        names,
+        [
+            ("cube3_one_point_pd_elastic", 1),
+            ("cube3_one_point_pd_elastic", 2),
+            ("cube3_one_point_pd_damaging", 1),
+            ("cube3_one_point_pd_damaging", 2),
+            ("cube6_one_point", 1),
+            ("cube6_one_point", 2),
+        ]
+    );
+    for r in &records {
+        assert_eq!(r.integration, "one_point");
+        assert!(r.element_updates_per_s > 0.0);
+        if r.case.contains("_pd_") {
+            // One point × 17 state values × (old + new) × 8 bytes on top of the geometry.
+            assert!(
+                r.bytes_per_element > 17.0 * 2.0 * 8.0,
+                "{}",
+                r.bytes_per_element
+            );
+        }
+        if cfg!(target_os = "linux") {
+            let peak = r.peak_rss_bytes.expect("VmHWM on Linux");
+            assert!(peak > 1 << 20, "{}: peak {peak} bytes", r.case);
+            assert!(r.peak_rss_reset.is_some());
+        }
+    }
+    let standard: Vec<String> = RunConfig::standard()
+        .cases()
+        .iter()
+        .map(|c| c.name())
+        .collect();
+    for case in [
+        "cube40_one_point_pd_elastic",
+        "cube40_one_point_pd_damaging",
+        "cube40_full_pd_elastic",
+        "cube100_one_point",
+    ] {
+        assert!(
+            standard.iter().any(|c| c == case),
+            "standard run lacks {case}"
+        );
+    }
+    let quick: Vec<String> = RunConfig::quick()
+        .cases()
+        .iter()
+        .map(|c| c.name())
+        .collect();
+    for case in ["cube8_one_point_pd_damaging", "cube12_one_point"] {
+        assert!(quick.iter().any(|c| c == case), "quick run lacks {case}");
     }
 }
 

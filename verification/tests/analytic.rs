@@ -37,6 +37,16 @@ fn w10_plastic_damage() {
 }
 
 #[test]
+fn w10_one_point() {
+    run_case("W10-1pt");
+}
+
+#[test]
+fn w10_damaging_bar() {
+    run_case("W10-bar");
+}
+
+#[test]
 fn w11_rock_bolt() {
     run_case("W11");
 }
@@ -54,6 +64,8 @@ fn every_case_is_tested_here() {
         "patch",
         "energy",
         "W10",
+        "W10-1pt",
+        "W10-bar",
         "W11",
         "W13",
         "W1-conv",

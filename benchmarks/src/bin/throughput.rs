@@ -34,6 +34,10 @@ struct Cli {
     /// Cube divisions n, n³ elements (default 20,40; 4,8 with --quick).
     #[arg(long, value_delimiter = ',')]
     sizes: Option<Vec<usize>>,
+    /// One-point elastic cubes run last, out of cache (default 100; 12 with --quick;
+    /// empty: none).
+    #[arg(long, value_delimiter = ',')]
+    large_sizes: Option<Vec<usize>>,
     /// Static direct solves of n³ cubes (default 40; 8 with --quick; empty: none).
     #[arg(long, value_delimiter = ',')]
     static_sizes: Option<Vec<usize>>,
@@ -58,6 +62,9 @@ fn main() -> ExitCode {
     }
     if let Some(s) = cli.sizes {
         config.sizes = s;
+    }
+    if let Some(s) = cli.large_sizes {
+        config.large_one_point_sizes = s;
     }
     if let Some(s) = cli.static_sizes {
         config.static_sizes = s;
@@ -150,7 +157,7 @@ fn main() -> ExitCode {
     }
     let checks = targets::check(&records);
     if !checks.is_empty() {
-        eprintln!("\ntargets (issues #2, #3, #4, #7):");
+        eprintln!("\ntargets (issues #2, #3, #4, #7, #11):");
         for c in &checks {
             eprintln!(
                 "  [{}] {} (measured {:.3e}){}",

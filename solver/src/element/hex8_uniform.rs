@@ -7,6 +7,15 @@
 //! the stiffness-type hourglass force is f_ai = κ Σ_α γ_αa q_αi, q_αi = Σ_a γ_αa u_ai, with
 //! κ = ε_hg (λ+2μ) V (b_ai b_ai) / 8 from the initial elastic moduli.
 //!
+//! With a damaging material the kernel uses κ (1 − D), D the point's damage after its
+//! update ([`Material::stiffness_factor`]; exactly κ for elastic materials): the
+//! stabilisation stands for the element's resistance to its linearly varying strain
+//! modes, which the damaged material provides in a fully integrated element, and is taken
+//! from the current material moduli (Flanagan & Belytschko 1981 §4; Belytschko, Liu &
+//! Moran 2000 §8.7). With the initial κ a cracked element kept its undamaged stiffness in
+//! the twelve hourglass modes and carried force across its crack through them
+//! (docs/plastic_damage.md §8).
+//!
 //! The kernel uses the split form of γ (issue #2): with h_αj = Σ_b Γ_αb x_bj and the mean
 //! displacement gradient G_ij = Σ_a u_ai b_aj,
 //!
@@ -259,7 +268,9 @@ pub fn internal_force_with_initial_strain(
         }
     }
     let sigma = material.update(&eps, old, new, ctx);
-    let kq = geo.modes_from(&g, &gu).map(|r| r.map(|x| geo.kappa * x));
+    // Hourglass stiffness of the damaged material: κ (1 − D), exactly κ when elastic.
+    let kappa = geo.kappa * material.stiffness_factor(new);
+    let kq = geo.modes_from(&g, &gu).map(|r| r.map(|x| kappa * x));
     geo.forces_kq(&sigma, &kq, f);
     sigma
 }
@@ -371,6 +382,77 @@ mod tests {
         let qs = g.hourglass_modes(&u);
         for (a, b) in qs.iter().flatten().zip(q.iter().flatten()) {
             assert!((a - b).abs() <= 1e-15, "{a} vs {b}");
+        }
+    }
+
+    /// A cracked one-point element resists an hourglass mode with κ (1 − D), D its damage
+    /// after the update, and an elastic one with κ exactly (docs/plastic_damage.md §8).
+    #[test]
+    fn hourglass_stiffness_follows_the_damage() {
+        use crate::material::plastic_damage::PlasticDamageParams;
+        use crate::material::PlasticDamage;
+        let x: [[f64; 3]; 8] = std::array::from_fn(|a| NODE_XI[a].map(|v| 0.5 * (v + 1.0)));
+        let el = Elastic::new("c", 31e9, 0.18, 2400.0).unwrap();
+        let pd = PlasticDamage::new(
+            "c",
+            el,
+            &PlasticDamageParams::from_strengths(2.9e6, 13e6, 24.1e6, 200.0, 1e4),
+        )
+        .unwrap();
+        let mat = Material::PlasticDamage(Box::new(pd));
+        let g = UniformGeometry::new(&x, &el, 0.05).unwrap();
+        let ctx = PointContext {
+            char_length: 1.0,
+            dt: 1e-5,
+        };
+        // Crack the point in uniaxial strain to ε_x = 4e-4.
+        let n = mat.state_len();
+        let mut old = vec![0.0; n];
+        mat.init_state(&mut old);
+        let mut new = old.clone();
+        for k in 1..=100 {
+            let eps = [4e-4 * k as f64 / 100.0, 0.0, 0.0, 0.0, 0.0, 0.0];
+            mat.update(&eps, &old, &mut new, &ctx);
+            old.copy_from_slice(&new);
+        }
+        let lin: [[f64; 3]; 8] = std::array::from_fn(|a| [4e-4 * x[a][0], 0.0, 0.0]);
+        let s = 1e-6;
+        let hg: [[f64; 3]; 8] = std::array::from_fn(|a| {
+            let mut u = lin[a];
+            u[1] += s * GAMMA[2][a];
+            u
+        });
+        let (mut f_lin, mut f_hg) = ([[0.0; 3]; 8], [[0.0; 3]; 8]);
+        let mut n1 = old.clone();
+        internal_force(&g, &mat, &lin, &old, &mut n1, &ctx, &mut f_lin);
+        let mut n2 = old.clone();
+        internal_force(&g, &mat, &hg, &old, &mut n2, &ctx, &mut f_hg);
+        let d = mat.damage(&n2);
+        assert!(d > 0.3, "the point must be cracked, D = {d}");
+        // The hourglass mode leaves the centroid strain (to round-off) and so the state.
+        for (a, b) in n1.iter().zip(&n2) {
+            assert!((a - b).abs() <= 1e-12 * (1.0 + a.abs()), "{n1:?} vs {n2:?}");
+        }
+        for a in 0..8 {
+            let expect = g.kappa * (1.0 - d) * GAMMA[2][a] * 8.0 * s;
+            let got = f_hg[a][1] - f_lin[a][1];
+            assert!(
+                (got - expect).abs() <= 1e-9 * expect.abs(),
+                "node {a}: {got} vs {expect}"
+            );
+        }
+        // Elastic: the full κ, bit for bit.
+        let e = Material::Elastic(el);
+        let (mut fe_lin, mut fe_hg) = ([[0.0; 3]; 8], [[0.0; 3]; 8]);
+        internal_force(&g, &e, &lin, &[], &mut [], &ctx, &mut fe_lin);
+        internal_force(&g, &e, &hg, &[], &mut [], &ctx, &mut fe_hg);
+        for a in 0..8 {
+            let expect = g.kappa * GAMMA[2][a] * 8.0 * s;
+            let got = fe_hg[a][1] - fe_lin[a][1];
+            assert!(
+                (got - expect).abs() <= 1e-9 * expect.abs(),
+                "elastic node {a}"
+            );
         }
     }
 }

@@ -141,6 +141,17 @@ impl Material {
         }
     }
 
+    /// Secant stiffness factor of a point state: 1 − D for the plastic-damage model (D of
+    /// eq. (24) after the last update), exactly 1 for the elastic one. The one-point
+    /// element multiplies its hourglass stiffness by it (docs/plastic_damage.md §8).
+    #[inline(always)]
+    pub fn stiffness_factor(&self, state: &[f64]) -> f64 {
+        match self {
+            Material::Elastic(_) => 1.0,
+            Material::PlasticDamage(p) => p.stiffness_factor(state),
+        }
+    }
+
     /// Scalar damage D of a point state (0 for models without damage).
     pub fn damage(&self, state: &[f64]) -> f64 {
         match self {

@@ -26,6 +26,8 @@ pub mod w06_incline;
 pub mod w07_newmark_block;
 pub mod w08_cohesive_bond;
 pub mod w09_pair_step;
+pub mod w10_damaging_bar;
+pub mod w10_one_point;
 pub mod w10_plastic_damage;
 pub mod w11_rock_bolt;
 pub mod w13_stable_step;
@@ -165,6 +167,43 @@ pub fn all() -> Vec<Case> {
                     element, the margin covers the slow-loading inertia.",
             },
             run: w10_plastic_damage::run,
+        },
+        Case {
+            info: CaseInfo {
+                id: "W10-1pt",
+                title: w10_one_point::TITLE,
+                group: "Material",
+                requirement: "A one-point (centroid) plastic-damage element with \
+                    Flanagan–Belytschko hourglass control follows the same closed-form \
+                    uniaxial laws as the fully integrated one: softening curve, G_t per \
+                    crack area for several element sizes, unloading and crack-closure \
+                    slopes (eq. (24) recovery).",
+                reference: "Lee & Fenves (1998) closed forms \
+                    (docs/verification_references.md §W10).",
+                tolerance: "Those of W10: curve 1 %, dissipated energy 2 %, slopes 1 % (the \
+                    closed forms are exact for one uniformly strained element).",
+            },
+            run: w10_one_point::run,
+        },
+        Case {
+            info: CaseInfo {
+                id: "W10-bar",
+                title: w10_damaging_bar::TITLE,
+                group: "Material",
+                requirement: "A row of five plastic-damage elements pulled past the peak \
+                    localises in its weakest element with one-point and with full \
+                    integration alike: the same peak force, dissipated energy and \
+                    post-peak forces, the hourglass energy a small share of the internal \
+                    work.",
+                reference: "Peak force 0.95 f_t0 a² (uniaxial stress, \
+                    docs/verification_references.md §W10); the fully integrated bar for the \
+                    one-point one (post-peak forces and dissipated energy).",
+                tolerance: "Peak 1 % (W10); one-point vs full: peak 1 %, energy \
+                    2 %, post-peak force 2 % of the peak (homogeneous strain but for the \
+                    lateral mismatch at the crack, a second-order effect); hourglass energy \
+                    ≤ 10 % of the internal work (the usual bound).",
+            },
+            run: w10_damaging_bar::run,
         },
         Case {
             info: CaseInfo {

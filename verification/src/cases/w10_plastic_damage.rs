@@ -34,19 +34,21 @@ use dcfm::material::plastic_damage::{
 use dcfm::material::{Elastic, Material, PlasticDamage};
 use dcfm::Result;
 
-use crate::models::single_element::{build, point_state};
+use dcfm::element::Integration;
+
+use crate::models::single_element::{build, build_with, point_state};
 use crate::record::{CaseOutput, Check};
 
 /// The case title (the `case` of its rows).
 pub const TITLE: &str = "W10 plastic-damage, single element";
 
-const SOURCE: &str = "docs/verification_references.md §W10 (Lee & Fenves 1998)";
-const E0: f64 = 31027e6;
-const FT0: f64 = 2.9e6;
-const GT: f64 = 200.0;
-const FC0: f64 = 13e6;
-const FC: f64 = 24.1e6;
-const GC: f64 = 1.0e4;
+pub(crate) const SOURCE: &str = "docs/verification_references.md §W10 (Lee & Fenves 1998)";
+pub(crate) const E0: f64 = 31027e6;
+pub(crate) const FT0: f64 = 2.9e6;
+pub(crate) const GT: f64 = 200.0;
+pub(crate) const FC0: f64 = 13e6;
+pub(crate) const FC: f64 = 24.1e6;
+pub(crate) const GC: f64 = 1.0e4;
 const STEPS: usize = 20_000;
 
 /// The W10 material (the Lee–Fenves regularisation and eq. (24) recovery its references
@@ -75,21 +77,28 @@ pub fn w10_material_with(
 /// Uniaxial tension of one element of size `l` to separation under the total
 /// regularisation: (peak σ, work to separation per crack area l(∫σ dε − ψ_end) in N/m).
 pub fn total_work(l: f64) -> Result<(f64, f64)> {
+    total_work_with(l, Integration::Full)
+}
+
+/// [`total_work`] with the given integration rule.
+pub fn total_work_with(l: f64, integration: Integration) -> Result<(f64, f64)> {
     let pd = w10_material_with(Regularisation::Total, Recovery::LeeFenves)?;
     let (t, _) = pd.element_laws(l);
     let eps_end = t.law.f0 / E0 + 12.0 / t.b;
-    let probe = build(
+    let probe = build_with(
         Material::PlasticDamage(Box::new(pd.clone())),
         l,
         [Some(0.0), None],
         0.0,
+        integration,
     )?;
     let v = eps_end * l / (STEPS as f64 * probe.dt);
-    let mut sim = build(
+    let mut sim = build_with(
         Material::PlasticDamage(Box::new(pd.clone())),
         l,
         [Some(v), None],
         1e-6,
+        integration,
     )?;
     let (mut e_prev, mut s_prev, mut w, mut peak) = (0.0, 0.0, 0.0, 0.0f64);
     let mut last = [0.0; 6];
@@ -108,22 +117,29 @@ pub fn total_work(l: f64) -> Result<(f64, f64)> {
 
 /// Uniaxial tension of one element of size `l`: (σ at εᵖ = 1/b, D there, ∫σ dεᵖ).
 pub fn tension(l: f64) -> Result<(f64, f64, f64)> {
+    tension_with(l, Integration::Full)
+}
+
+/// [`tension`] with the given integration rule.
+pub fn tension_with(l: f64, integration: Integration) -> Result<(f64, f64, f64)> {
     let pd = w10_material()?;
     let b = FT0 * l / GT;
     let eps_end = FT0 / E0 + 12.0 / b;
-    let probe = build(
+    let probe = build_with(
         Material::PlasticDamage(Box::new(pd.clone())),
         l,
         [Some(0.0), None],
         0.0,
+        integration,
     )?;
     let dt = probe.dt;
     let v = eps_end * l / (STEPS as f64 * dt);
-    let mut sim = build(
+    let mut sim = build_with(
         Material::PlasticDamage(Box::new(pd.clone())),
         l,
         [Some(v), None],
         1e-6,
+        integration,
     )?;
     let (mut ep_prev, mut s_prev) = (0.0, 0.0);
     let mut g = 0.0;
@@ -156,15 +172,21 @@ pub fn cycle() -> Result<(f64, f64, f64)> {
 
 /// [`cycle`] for a given W10 material.
 pub fn cycle_of(pd: PlasticDamage) -> Result<(f64, f64, f64)> {
+    cycle_with(pd, Integration::Full)
+}
+
+/// [`cycle_of`] with the given integration rule.
+pub fn cycle_with(pd: PlasticDamage, integration: Integration) -> Result<(f64, f64, f64)> {
     let l = 1.0;
     let b = FT0 * l / GT;
     // D_t = 1 − e^{−d εᵖ} = 0.6 at εᵖ = ln(2.5)/b; turn a little after the peak strain.
     let eps_turn = FT0 / E0 + (2.5f64).ln() / b;
-    let probe = build(
+    let probe = build_with(
         Material::PlasticDamage(Box::new(pd.clone())),
         l,
         [Some(0.0), None],
         0.0,
+        integration,
     )?;
     let dt = probe.dt;
     let t_turn = STEPS as f64 * dt;
@@ -173,11 +195,12 @@ pub fn cycle_of(pd: PlasticDamage) -> Result<(f64, f64, f64)> {
         times: vec![0.0, t_turn, t_turn + dt],
         values: vec![v, v, -v],
     };
-    let mut sim = build(
+    let mut sim = build_with(
         Material::PlasticDamage(Box::new(pd.clone())),
         l,
         [Some(v), None],
         0.0,
+        integration,
     )?;
     sim.model.constraints.prescribed[0].history = history;
     let mut rows: Vec<(f64, f64)> = Vec::new();

@@ -18,20 +18,39 @@ use dcfm::model::{Model, RegionSetup};
 use dcfm::stage::Simulation;
 use dcfm::{DcfmError, Result};
 
-/// A single-element simulation; `velocities[d]` (m/s) is the constant velocity of the
-/// face d = l for d = x, y (None: that face is free).
+/// Flanagan–Belytschko hourglass coefficient of the one-point element (the cube's
+/// homogeneous strain excites no hourglass mode, so its value does not enter the result).
+pub const HOURGLASS: f64 = 0.05;
+
+/// A single fully integrated element; `velocities[d]` (m/s) is the constant velocity of
+/// the face d = l for d = x, y (None: that face is free).
 pub fn build(
     material: Material,
     l: f64,
     velocities: [Option<f64>; 2],
     beta: f64,
 ) -> Result<Simulation> {
+    build_with(material, l, velocities, beta, Integration::Full)
+}
+
+/// [`build`] with the given integration rule (one-point: hourglass coefficient
+/// [`HOURGLASS`]).
+pub fn build_with(
+    material: Material,
+    l: f64,
+    velocities: [Option<f64>; 2],
+    beta: f64,
+    integration: Integration,
+) -> Result<Simulation> {
     let mesh = BoxMeshSpec::single("e", [0.0; 3], [l; 3], [1, 1, 1]).build("single element")?;
     let setup = RegionSetup {
         region: "e".into(),
         material,
-        integration: Integration::Full,
-        hourglass: 0.0,
+        integration,
+        hourglass: match integration {
+            Integration::OnePoint => HOURGLASS,
+            Integration::Full => 0.0,
+        },
     };
     let mut model = Model::new(mesh, &[setup], "single element")?;
     for (face, mask) in [("e.xmin", 1u8), ("e.ymin", 2), ("e.zmin", 4)] {
@@ -57,8 +76,8 @@ pub fn build(
     Simulation::new(model, dt, 0.9)
 }
 
-/// Integration-point state of the single element (point 0; all eight points are equal
-/// under homogeneous strain).
+/// Integration-point state of the single element (point 0; all eight points of a fully
+/// integrated element are equal under homogeneous strain).
 pub fn point_state(sim: &Simulation) -> &[f64] {
     let g = &sim.model.groups[0];
     let stride = g.states.stride();

@@ -396,6 +396,14 @@ impl PlasticDamage {
         s[slot::DAMAGE]
     }
 
+    /// Secant stiffness factor 1 − D (D of eq. (24) at the end of the last update): what
+    /// the one-point element scales its hourglass stiffness by, so that a cracked element
+    /// resists its hourglass modes as its damaged material does (docs/plastic_damage.md §8).
+    #[inline]
+    pub fn stiffness_factor(&self, s: &[f64]) -> f64 {
+        1.0 - s[slot::DAMAGE]
+    }
+
     /// D_t = 1 − e^(−d_t ε̃ᵖ_t) (eq. 24).
     pub fn tensile_damage(&self, s: &[f64]) -> f64 {
         self.constants.tension.damage(s[slot::Y_T])

@@ -53,6 +53,11 @@ fn default_merge_tolerance() -> f64 {
     1e-6
 }
 
+/// Largest grading (and smallest, its inverse) of a block axis: a million-fold ratio of
+/// the last to the first element length, far beyond any graded mesh (≈ 20); at 1e200 the
+/// geometric series overflows and the elements degenerate.
+const MAX_GRADING: f64 = 1e6;
+
 const AXES: [&str; 3] = ["x", "y", "z"];
 
 /// Node coordinates along one axis: `n` intervals over `length`, geometric grading so
@@ -106,12 +111,18 @@ impl BlockSpec {
                     "must be between 1 and 100000",
                 ));
             }
-            if !(self.grading[d].is_finite() && self.grading[d] > 0.0) {
+            let g = self.grading[d];
+            if !(g.is_finite() && (1.0 / MAX_GRADING..=MAX_GRADING).contains(&g)) {
                 return Err(DcfmError::invalid(
                     file,
                     format!("{field}.grading[{d}]"),
-                    self.grading[d],
-                    "must be a finite ratio > 0",
+                    format!("{g:e}"),
+                    format!(
+                        "a finite ratio of the last to the first element length from 1e-6 \
+                         to {} (a million-fold ratio in one block; beyond it the smallest \
+                         elements vanish into the round-off of the coordinates)",
+                        crate::readable::engineering(MAX_GRADING)
+                    ),
                 ));
             }
         }

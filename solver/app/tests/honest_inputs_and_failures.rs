@@ -322,3 +322,29 @@ fn dcfm_check_and_run_print_the_warnings_on_stderr() {
     assert!(stderr.contains("materials.rock.young = 1e300"), "{stderr}");
     let _ = std::fs::remove_dir_all(&d);
 }
+
+#[test]
+fn a_run_failing_on_another_error_keeps_its_last_state_as_the_failure_frame() {
+    let out = dir("io");
+    // A folder where the frame of step 1 must go: its write fails after step 1.
+    std::fs::create_dir_all(out.join("mesh_000001.vtu").join("x")).unwrap();
+    let text = CUBE.replace(
+        "[loads.gravity]",
+        "[output]\nvtu_every = 1\n[loads.gravity]",
+    );
+    let case = parse_case(&text, "c.toml", Path::new(".")).unwrap();
+    let e = run_case(case, &run_opts(&out)).unwrap_err().to_string();
+    assert!(e.contains("mesh_000001.vtu"), "{e}");
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
+    assert_eq!(v["status"], "failed");
+    assert_eq!(v["error"].as_str().unwrap(), e);
+    // Not an instability: the last completed state, step 1.
+    assert_eq!(v["steps"], 1);
+    assert_eq!(v["failure_frame"], "mesh_000001_failed.vtu");
+    let pvd = std::fs::read_to_string(out.join("case.pvd")).unwrap();
+    assert_eq!(pvd.matches("<DataSet").count(), 2, "{pvd}");
+    assert!(pvd.contains("file=\"mesh_000001_failed.vtu\""), "{pvd}");
+    assert!(out.join("mesh_000001_failed.vtu").is_file());
+    let _ = std::fs::remove_dir_all(&out);
+}

@@ -348,3 +348,40 @@ fn a_run_failing_on_another_error_keeps_its_last_state_as_the_failure_frame() {
     assert!(out.join("mesh_000001_failed.vtu").is_file());
     let _ = std::fs::remove_dir_all(&out);
 }
+
+#[test]
+fn absurd_lengths_damping_and_gravity_are_named_at_their_field() {
+    // Block edges of 1e300 m and 1e-300 m read as "element 0: degenerate" before.
+    for size in ["1e300", "1e-300"] {
+        let e = error_of(&CUBE.replace(
+            "size = [1.0, 1.0, 1.0]",
+            &format!("size = [{size}, 1.0, 1.0]"),
+        ));
+        assert!(
+            e.starts_with(&format!(
+                "c.toml: mesh.blocks[0].size[0] = {size}: a length from"
+            )),
+            "{e}"
+        );
+    }
+    // Rayleigh coefficients of 1e300 read as "time.dt = inf" before.
+    for (key, field) in [("alpha", "damping.alpha"), ("beta", "damping.beta")] {
+        let e = error_of(&format!("{CUBE}[damping]\n{key} = 1e300\n"));
+        assert!(
+            e.starts_with(&format!("c.toml: {field} = 1e300: at most")),
+            "{e}"
+        );
+    }
+    // A region's own damping is named by its region.
+    let e = error_of(&CUBE.replace(
+        "material = \"rock\"\n",
+        "material = \"rock\"\ndamping = { beta = 1e300 }\n",
+    ));
+    assert!(
+        e.starts_with("c.toml: regions[0].damping.beta = 1e300"),
+        "{e}"
+    );
+    // Gravity of 1e300 m/s²: its length does not overflow past the warning.
+    let w = warnings_of(&CUBE.replace("-9.81]", "-1e300]"));
+    assert!(has(&w, "loads.gravity.acceleration = 1e300"), "{w:?}");
+}

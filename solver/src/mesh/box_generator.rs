@@ -58,6 +58,12 @@ fn default_merge_tolerance() -> f64 {
 /// geometric series overflows and the elements degenerate.
 const MAX_GRADING: f64 = 1e6;
 
+/// Shortest block edge (m): 1 nm is atomic scale, where no continuum model holds (and
+/// 1e-300 m gives elements whose stiffness underflows into a "degenerate" element).
+const MIN_LENGTH: f64 = 1e-9;
+/// Longest block edge and largest coordinate (m): a hundred Earth diameters (1.3e7 m).
+const MAX_LENGTH: f64 = 1e9;
+
 const AXES: [&str; 3] = ["x", "y", "z"];
 
 /// Node coordinates along one axis: `n` intervals over `length`, geometric grading so
@@ -95,12 +101,23 @@ impl BlockSpec {
                     "must be a finite length > 0 (m)",
                 ));
             }
-            if !self.origin[d].is_finite() {
+            if !(MIN_LENGTH..=MAX_LENGTH).contains(&self.size[d]) {
+                return Err(DcfmError::invalid(
+                    file,
+                    format!("{field}.size[{d}]"),
+                    format!("{:e}", self.size[d]),
+                    format!(
+                        "a length from {MIN_LENGTH:e} m (atoms, not a continuum) to \
+                         {MAX_LENGTH:e} m (a hundred Earth diameters); a units slip?"
+                    ),
+                ));
+            }
+            if !(self.origin[d].is_finite() && self.origin[d].abs() <= MAX_LENGTH) {
                 return Err(DcfmError::invalid(
                     file,
                     format!("{field}.origin[{d}]"),
-                    self.origin[d],
-                    "must be finite (m)",
+                    format!("{:e}", self.origin[d]),
+                    format!("a finite coordinate within ±{MAX_LENGTH:e} m"),
                 ));
             }
             if self.divisions[d] == 0 || self.divisions[d] > 100_000 {

@@ -226,7 +226,9 @@ pub(super) fn warnings(file: &CaseFile, label: &str, dt: f64, critical: f64) -> 
         }
     }
     if let Some(g) = &file.loads.gravity {
-        let norm = g.acceleration.iter().map(|a| a * a).sum::<f64>().sqrt();
+        // hypot: a length of 1e300 does not overflow into ∞ (and escape the warning).
+        let [x, y, z] = g.acceleration;
+        let norm = x.hypot(y).hypot(z);
         if norm > 0.0 {
             w.check("loads.gravity.acceleration", norm, &GRAVITY);
         }

@@ -385,3 +385,28 @@ fn absurd_lengths_damping_and_gravity_are_named_at_their_field() {
     let w = warnings_of(&CUBE.replace("-9.81]", "-1e300]"));
     assert!(has(&w, "loads.gravity.acceleration = 1e300"), "{w:?}");
 }
+
+#[test]
+fn a_vanishing_safety_factor_is_refused_and_a_tiny_one_warned_at_time_safety() {
+    let e = error_of(&CUBE.replace("end = 0.002", "end = 0.002\nsafety = 1e-300"));
+    assert!(
+        e.starts_with("c.toml: time.safety = 1e-300: a vanishing time step") && !e.contains("  "),
+        "{e}"
+    );
+    let w = warnings_of(&CUBE.replace("end = 0.002", "end = 0.002\nsafety = 1e-4"));
+    assert_eq!(w.len(), 1, "{w:?}");
+    assert!(
+        has(&w, "c.toml: time.safety = 100e-6: below 0.001"),
+        "{w:?}"
+    );
+    // Nearly incompressible: valid, warned.
+    let w = warnings_of(&CUBE.replace("poisson = 0.25", "poisson = 0.4999"));
+    assert!(
+        has(
+            &w,
+            "materials.rock.poisson = 0.4999: outside the usual -0.5 to 0.495"
+        ),
+        "{w:?}"
+    );
+    assert!(warnings_of(&CUBE.replace("poisson = 0.25", "poisson = 0.49")).is_empty());
+}

@@ -147,6 +147,7 @@ fn build(
     time::check_vanishing_dt(
         label,
         file.time.dt,
+        (dt, file.time.safety),
         file.time.end,
         critical,
         plausibility::SMALL_DT_FRACTION,

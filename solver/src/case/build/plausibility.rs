@@ -44,6 +44,18 @@ const DENSITY: Usual = Usual {
           element; t/m³ or g/cm³ typed as kg/m³?",
 };
 
+/// Poisson's ratio: saturated, undrained soils reach 0.49–0.495; nearer to 0.5 the P-wave
+/// speed √((λ + 2μ)/ρ) grows without bound (the stable step shrinks as √(1 − 2ν)) and
+/// fully integrated hex8 lock volumetrically. Negative values (auxetic foams) are rare in
+/// rock and concrete; −0.5 leaves room for the few reported.
+const POISSON: Usual = Usual {
+    lo: -0.5,
+    hi: 0.495,
+    unit: "-",
+    why: "saturated undrained soils reach 0.49–0.495; nearer to 0.5 the P-wave speed grows \
+          without bound, the stable step shrinks as √(1 − 2ν) and hex8 lock",
+};
+
 /// Tensile strength f_t0: weak cemented soils ≈ 10 kPa; the strongest rocks and fibre
 /// concretes ≈ 10–30 MPa (100 MPa leaves a factor of three). MPa typed as Pa gives 1.3 Pa,
 /// whose damage then softens every element at the first step (a 0.2 s run took minutes).
@@ -244,6 +256,17 @@ pub(super) fn warnings(file: &CaseFile, label: &str, dt: f64, critical: f64) -> 
             }
         }
     }
+    if file.time.dt.is_none() && file.time.safety < SMALL_DT_FRACTION {
+        w.push(
+            "time.safety",
+            file.time.safety,
+            format!(
+                "below {}: Δt = safety × the stable step takes more than a thousand times \
+                 the steps stability needs (0.9 is usual; 0.5 for a margin)",
+                engineering(SMALL_DT_FRACTION)
+            ),
+        );
+    }
     if file.time.dt.is_some() && critical.is_finite() && dt < SMALL_DT_FRACTION * critical {
         w.push(
             "time.dt",
@@ -266,6 +289,7 @@ fn materials(w: &mut Warnings, section: &BTreeMap<String, MaterialSection>) {
         let f = format!("materials.{name}");
         w.check(format!("{f}.young"), m.young, &YOUNG);
         w.check(format!("{f}.density"), m.density, &DENSITY);
+        w.check(format!("{f}.poisson"), m.poisson, &POISSON);
         let Some(p) = &m.plastic_damage else {
             continue;
         };

@@ -45,20 +45,20 @@ pub(super) fn check_time(section: &TimeSection, label: &str) -> Result<u64> {
 /// endless, or at some point unstable, simulation.
 pub(super) const VANISHING_DT_FRACTION: f64 = 1e-9;
 
-/// Refuse a given `time.dt` that vanishes against the stable step `critical` (below
+/// Refuse a time step `dt` that vanishes against the stable step `critical` (below
 /// [`VANISHING_DT_FRACTION`] of it), or whose step count to `end` overflows 2⁵³ while it
 /// is far below the stable step (below `small` × `critical`; an end time too large for a
-/// sound step stays an error at `time.end`, [`check_step_budget`]).
+/// sound step stays an error at `time.end`, [`check_step_budget`]). The error names
+/// `time.dt` when it was `given`, else `time.safety` (Δt = safety × the stable step).
 pub(super) fn check_vanishing_dt(
     label: &str,
     given: Option<f64>,
+    step: (f64, f64),
     end: f64,
     critical: f64,
     small: f64,
 ) -> Result<()> {
-    let Some(dt) = given else {
-        return Ok(());
-    };
+    let (dt, safety) = step;
     let steps = step_count(end, dt);
     let vanishing = critical.is_finite() && dt < VANISHING_DT_FRACTION * critical;
     // No stable step (NaN: every element prescribed) leaves dt alone to blame.
@@ -77,14 +77,30 @@ pub(super) fn check_vanishing_dt(
     } else {
         "every element is prescribed (no stable-step limit)".to_string()
     };
+    let least = crate::readable::engineering(VANISHING_DT_FRACTION);
+    let (field, value, fix) = match given {
+        Some(d) => (
+            "time.dt",
+            d,
+            format!(
+                "give at least {least} × the stable step, or leave time.dt out for the \
+                 safety factor × the stable step"
+            ),
+        ),
+        None => (
+            "time.safety",
+            safety,
+            format!("give a safety factor of at least {least} (0.9 is usual)"),
+        ),
+    };
     Err(DcfmError::invalid(
         label,
-        "time.dt",
-        crate::readable::engineering(dt),
+        field,
+        crate::readable::engineering(value),
         format!(
-            "a vanishing time step: {against}, {} steps to the end time {} s{}; give at \
-             least {} × the stable step, or leave time.dt out for the safety factor × \
-             the stable step (a units slip?)",
+            "a vanishing time step: Δt = {} s is {against}, {} steps to the end time {} s{}; \
+             {fix} (a units slip?)",
+            crate::readable::engineering(dt),
             crate::readable::engineering(steps),
             crate::readable::engineering(end),
             if steps > MAX_COUNTABLE_STEPS {
@@ -92,7 +108,6 @@ pub(super) fn check_vanishing_dt(
             } else {
                 ""
             },
-            crate::readable::engineering(VANISHING_DT_FRACTION)
         ),
     ))
 }

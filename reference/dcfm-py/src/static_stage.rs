@@ -39,6 +39,7 @@ pub fn run_stage(
         motions,
         static_plan,
         max_steps,
+        warnings,
         fingerprint,
     } = built;
     let pool = crate::simulation::thread_pool(threads)?;
@@ -71,6 +72,7 @@ pub fn run_stage(
             motions,
             static_plan,
             max_steps,
+            warnings,
             fingerprint,
         },
         result,

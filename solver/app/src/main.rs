@@ -133,6 +133,9 @@ fn main() -> ExitCode {
         },
         Command::Check { case } => match load_case(&case) {
             Ok(c) => {
+                for w in &c.warnings {
+                    esay!("warning: {w}");
+                }
                 let m = &c.model;
                 say!("case      {} ({})", case.display(), c.title);
                 say!(
@@ -278,6 +281,9 @@ fn main() -> ExitCode {
                     return ExitCode::from(2);
                 }
             };
+            for w in &loaded.warnings {
+                esay!("warning: {w}");
+            }
             if resume && !out.join("checkpoint.bin").exists() {
                 esay!(
                     "note: --resume: no checkpoint in {}; starting from scratch (step 0)",

@@ -9,7 +9,7 @@ use serde::Serialize;
 
 use dcfm::case::fingerprint::CaseFingerprint;
 use dcfm::case::probes::Probes;
-use dcfm::case::{Case, OutputSection};
+use dcfm::case::{Case, CaseWarning, OutputSection};
 use dcfm::error::{DcfmError, Result};
 use dcfm::stage::checkpoint::{read_checkpoint, write_checkpoint};
 use dcfm::stage::checkpoint_seal::{open_checkpoint, SealedWriter};
@@ -48,6 +48,15 @@ pub struct Peak {
 #[derive(Clone, Debug, Serialize)]
 pub struct RunSummary {
     pub case: String,
+    /// "completed", or "failed" when the run stopped on an error after its model was
+    /// built (the other fields then describe the state where it stopped).
+    pub status: &'static str,
+    /// The error that stopped a failed run; None for a completed one.
+    pub error: Option<String>,
+    /// The failure frame of a failed run (a VTU listed last in case.pvd), if written.
+    pub failure_frame: Option<String>,
+    /// The case's plausibility warnings (values far outside what their fields mean).
+    pub warnings: Vec<CaseWarning>,
     pub title: String,
     pub nodes: usize,
     pub elements: usize,
@@ -291,6 +300,16 @@ fn write_frame(
 
 /// Write one VTU of the current state and add it to the collection.
 fn write_state_vtu(sim: &Simulation, out: &Path, pvd: &mut PvdCollection) -> Result<()> {
+    write_state_vtu_named(sim, out, pvd, &format!("mesh_{:06}.vtu", sim.step))
+}
+
+/// Write the VTU of the current state as `name` and add it to the collection.
+fn write_state_vtu_named(
+    sim: &Simulation,
+    out: &Path,
+    pvd: &mut PvdCollection,
+    name: &str,
+) -> Result<()> {
     let model = &sim.model;
     let ne = model.n_elements();
     let mut stress = vec![0.0; 6 * ne];
@@ -365,9 +384,8 @@ fn write_state_vtu(sim: &Simulation, out: &Path, pvd: &mut PvdCollection) -> Res
             values,
         });
     }
-    let name = format!("mesh_{:06}.vtu", sim.step);
     write_vtu(
-        &out.join(&name),
+        &out.join(name),
         &model.mesh.coords,
         &model.mesh.elements,
         &point_fields,
@@ -428,7 +446,7 @@ fn write_state_vtu(sim: &Simulation, out: &Path, pvd: &mut PvdCollection) -> Res
             values: &model.region_names,
         }],
     )?;
-    pvd.add(sim.time, &name)
+    pvd.add(sim.time, name)
 }
 
 /// Magic of the run driver's block at the end of a checkpoint: the peaks so far.
@@ -513,6 +531,67 @@ fn frame_step(file: &str) -> Option<u64> {
     digits.parse().ok()
 }
 
+/// Step of the failure frame of a failed run (`mesh_000120_failed.vtu` → 120).
+fn failure_frame_step(file: &str) -> Option<u64> {
+    frame_step(&file.replace("_failed.vtu", ".vtu")).filter(|_| file.ends_with("_failed.vtu"))
+}
+
+/// Write the failure frame of a run stopped by `error` (docs/outputs.md, "A failed
+/// run"): after an instability, the state the failed step reached (the diverging motion;
+/// [`Simulation::adopt_failed_step`]), else the last state; as `mesh_NNNNNN_failed.vtu`,
+/// written atomically and listed last in `pvd` (replacing a frame of the same time).
+fn write_failure_frame(
+    sim: &mut Simulation,
+    error: &DcfmError,
+    out: &Path,
+    pvd: &mut PvdCollection,
+) -> Result<String> {
+    if matches!(error, DcfmError::Unstable { .. }) {
+        sim.adopt_failed_step();
+    }
+    let t = sim.time;
+    if pvd.entries().last().is_some_and(|e| e.time >= t) {
+        pvd.retain(|e| e.time < t)?;
+    }
+    let name = format!("mesh_{:06}_failed.vtu", sim.step);
+    write_state_vtu_named(sim, out, pvd, &name)?;
+    Ok(name)
+}
+
+/// The summary of a run that stopped on `error` before its dynamic stage had a state
+/// (the static stage or the setup of the dynamic one): what it was and why it stopped.
+#[derive(Serialize)]
+struct EarlyFailure<'a> {
+    case: &'a str,
+    title: &'a str,
+    status: &'static str,
+    error: String,
+    warnings: &'a [CaseWarning],
+}
+
+/// Write summary.json for a run that stopped on `error` before its dynamic stage had a
+/// state; the error is returned as it was (a failure to write the summary is added to its
+/// text on stderr only, the run's own error matters more).
+fn early_failure(
+    out: &Path,
+    label: &str,
+    title: &str,
+    warnings: &[CaseWarning],
+    error: DcfmError,
+) -> DcfmError {
+    let summary = EarlyFailure {
+        case: label,
+        title,
+        status: "failed",
+        error: error.to_string(),
+        warnings,
+    };
+    if let Err(e) = write_summary(&out.join("summary.json"), &summary) {
+        eprintln!("note: the summary of the failed run could not be written: {e}");
+    }
+    error
+}
+
 /// Remove from `out` the VTU frames that `pvd` does not list (left by an earlier run in
 /// the same folder, or written after the checkpoint a run resumes from) and the temporary
 /// files of atomic writes that a killed process left (`.<name>.<pid>.<n>.tmp`, another
@@ -523,8 +602,8 @@ fn remove_stale_files(out: &Path, pvd: &PvdCollection) -> Result<()> {
     for entry in std::fs::read_dir(out).map_err(io)? {
         let entry = entry.map_err(io)?;
         let name = entry.file_name().to_string_lossy().into_owned();
-        let stale_frame =
-            frame_step(&name).is_some() && !pvd.entries().iter().any(|e| e.file == name);
+        let stale_frame = (frame_step(&name).is_some() || failure_frame_step(&name).is_some())
+            && !pvd.entries().iter().any(|e| e.file == name);
         let killed_write = name.starts_with('.') && name.ends_with(".tmp") && !name.contains(&own);
         if (stale_frame || killed_write) && entry.file_type().map_err(io)?.is_file() {
             std::fs::remove_file(entry.path()).map_err(io)?;
@@ -582,6 +661,11 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
         );
     }
     let payload = sealed.map(|s| s.payload);
+    let warnings = case.warnings.clone();
+    // From here on the run can fail on its own (the static stage, an instability, a
+    // contact solve that does not settle, a write): summary.json then says so
+    // (docs/outputs.md, "A failed run").
+    let early = |e: DcfmError| early_failure(out, &label, &title, &warnings, e);
     // ---- static stage (owner: static; docs/static_stage.md) ---------------------------
     // Run it (writing static.vtu, static_histories.csv, static_summary.json) or restore it
     // from the checkpoint; the dynamic stage starts from its state. Every checkpoint's
@@ -592,9 +676,11 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
         out,
         payload.map(|b| (b, ckpt_label.as_str())),
         &label,
-    )?;
+    )
+    .map_err(early)?;
     let static_result = staged.result;
-    let mut sim = crate::static_run::start(staged.model, static_result.as_ref(), dt, case.safety)?;
+    let mut sim = crate::static_run::start(staged.model, static_result.as_ref(), dt, case.safety)
+        .map_err(early)?;
     if staged.fresh {
         write_checkpoint_file(
             &checkpoint,
@@ -602,52 +688,56 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
             static_result.as_ref(),
             &sim,
             &[Peak::default(); 2],
-        )?;
+        )
+        .map_err(early)?;
     }
     // ---- end of the static stage hook ---------------------------------------------------
     let columns = HistoryColumns::new(&case.probes, &sim);
     let header = columns.header(&sim);
     let mut resumed_from = None;
     if let Some(bytes) = payload {
-        read_checkpoint(&bytes[staged.dynamic_offset..], &ckpt_label, &mut sim)?;
+        read_checkpoint(&bytes[staged.dynamic_offset..], &ckpt_label, &mut sim).map_err(early)?;
         resumed_from = Some(sim.step);
     }
     let mut frames = match &output.frames {
-        Some(f) => Some(crate::frames::CompactFrames::new(
-            f,
-            &sim,
-            out,
-            resumed_from.map(|_| sim.time),
-        )?),
+        Some(f) => Some(
+            crate::frames::CompactFrames::new(f, &sim, out, resumed_from.map(|_| sim.time))
+                .map_err(early)?,
+        ),
         None => None,
     };
     let pvd_path = out.join("case.pvd");
     let hist_path = out.join("histories.csv");
-    let (mut pvd, mut hist) = if resumed_from.is_some() {
-        // Keep the frames this run's schedule writes up to the restart (not the end frame
-        // of the interrupted run), so that the collection is that of an uninterrupted run.
-        let mut p = PvdCollection::resume(&pvd_path)?;
-        p.truncate_after(sim.time)?;
-        let restart = sim.step;
-        p.retain(|e| {
-            frame_step(&e.file).is_some_and(|s| {
-                s == 0 || (s <= restart && output.vtu_every > 0 && s % output.vtu_every == 0)
-            })
-        })?;
-        (
-            p,
-            HistoryWriter::open_append_after(&hist_path, &header, sim.time)?,
-        )
-    } else {
-        let mut h = HistoryWriter::create(&hist_path, &header)?;
-        let mut row = Vec::new();
-        columns.row(&sim, &output, &mut row);
-        h.append(&row)?;
-        let mut p = PvdCollection::create(&pvd_path)?;
-        write_frame(&sim, out, &mut p, frames.as_mut(), true, false)?;
-        (p, h)
+    let mut opened = || -> Result<(PvdCollection, HistoryWriter)> {
+        Ok(if resumed_from.is_some() {
+            // Keep the frames this run's schedule writes up to the restart (not the end frame
+            // of the interrupted run), so that the collection is that of an uninterrupted run.
+            let mut p = PvdCollection::resume(&pvd_path)?;
+            p.truncate_after(sim.time)?;
+            let restart = sim.step;
+            // A failure frame of an earlier run is not a frame of this one (`frame_step`
+            // does not read it).
+            p.retain(|e| {
+                frame_step(&e.file).is_some_and(|s| {
+                    s == 0 || (s <= restart && output.vtu_every > 0 && s % output.vtu_every == 0)
+                })
+            })?;
+            (
+                p,
+                HistoryWriter::open_append_after(&hist_path, &header, sim.time)?,
+            )
+        } else {
+            let mut h = HistoryWriter::create(&hist_path, &header)?;
+            let mut row = Vec::new();
+            columns.row(&sim, &output, &mut row);
+            h.append(&row)?;
+            let mut p = PvdCollection::create(&pvd_path)?;
+            write_frame(&sim, out, &mut p, frames.as_mut(), true, false)?;
+            (p, h)
+        })
     };
-    remove_stale_files(out, &pvd)?;
+    let (mut pvd, mut hist) = opened().map_err(early)?;
+    remove_stale_files(out, &pvd).map_err(early)?;
     let bar = if opts.progress {
         crate::progress::run_bar(ProgressDrawTarget::stderr(), total_steps, sim.step, dt)
     } else {
@@ -658,81 +748,114 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
     let mut row = Vec::with_capacity(header.len());
     let start_step = sim.step;
     let t0 = Instant::now();
-    while sim.step < total_steps {
-        // The last step lands on `end` (shortened when `end` is not a multiple of Δt).
-        let last = sim.step + 1 == total_steps;
-        if last
-            && schedule.shortened(dt)
-            && sim.can_shorten_steps()
-            && output.checkpoint_every > 0
-            && sim.step % output.checkpoint_every != 0
-        {
-            // The state after a shortened step is off the step grid and gets no
-            // checkpoint: checkpoint the last full step instead, so that a run resumed to
-            // a later end starts one step before this end.
-            hist.flush()?;
-            write_checkpoint_file(
-                &checkpoint,
-                &fingerprint,
-                static_result.as_ref(),
-                &sim,
-                &[peak_u, peak_v],
-            )?;
-        }
-        let taken = if last { sim.step_to(end) } else { sim.step() };
-        taken.inspect_err(|_| {
-            let _ = hist.flush();
-        })?;
-        if sim.step % output.history_every == 0 || sim.step == total_steps {
-            columns.row(&sim, &output, &mut row);
-            hist.append(&row)?;
-            for (i, (u, v)) in sim.u.iter().zip(&sim.v).enumerate() {
-                let (nu, nv) = (norm(u), norm(v));
-                if nu > peak_u.value {
-                    peak_u = Peak {
-                        value: nu,
-                        node: i,
-                        time: sim.time,
-                    };
-                }
-                if nv > peak_v.value {
-                    peak_v = Peak {
-                        value: nv,
-                        node: i,
-                        time: sim.time,
-                    };
+    let mut stepping = || -> Result<()> {
+        while sim.step < total_steps {
+            // The last step lands on `end` (shortened when `end` is not a multiple of Δt).
+            let last = sim.step + 1 == total_steps;
+            if last
+                && schedule.shortened(dt)
+                && sim.can_shorten_steps()
+                && output.checkpoint_every > 0
+                && sim.step % output.checkpoint_every != 0
+            {
+                // The state after a shortened step is off the step grid and gets no
+                // checkpoint: checkpoint the last full step instead, so that a run resumed to
+                // a later end starts one step before this end.
+                hist.flush()?;
+                write_checkpoint_file(
+                    &checkpoint,
+                    &fingerprint,
+                    static_result.as_ref(),
+                    &sim,
+                    &[peak_u, peak_v],
+                )?;
+            }
+            let taken = if last { sim.step_to(end) } else { sim.step() };
+            taken.inspect_err(|_| {
+                let _ = hist.flush();
+            })?;
+            if sim.step % output.history_every == 0 || sim.step == total_steps {
+                columns.row(&sim, &output, &mut row);
+                hist.append(&row)?;
+                for (i, (u, v)) in sim.u.iter().zip(&sim.v).enumerate() {
+                    let (nu, nv) = (norm(u), norm(v));
+                    if nu > peak_u.value {
+                        peak_u = Peak {
+                            value: nu,
+                            node: i,
+                            time: sim.time,
+                        };
+                    }
+                    if nv > peak_v.value {
+                        peak_v = Peak {
+                            value: nv,
+                            node: i,
+                            time: sim.time,
+                        };
+                    }
                 }
             }
+            if (output.vtu_every > 0 && sim.step % output.vtu_every == 0) || sim.step == total_steps
+            {
+                let last = sim.step == total_steps;
+                write_frame(&sim, out, &mut pvd, frames.as_mut(), false, last)?;
+            }
+            // A shortened last step is off the step grid: no checkpoint there (a run resumed
+            // to a later end continues from the last full-step checkpoint).
+            if output.checkpoint_every > 0
+                && sim.step % output.checkpoint_every == 0
+                && sim.on_grid()
+            {
+                hist.flush()?;
+                write_checkpoint_file(
+                    &checkpoint,
+                    &fingerprint,
+                    static_result.as_ref(),
+                    &sim,
+                    &[peak_u, peak_v],
+                )?;
+            }
+            if sim.step % 64 == 0 {
+                let el = t0.elapsed().as_secs_f64().max(1e-9);
+                let rate = (sim.step - start_step) as f64 * n_elements as f64 / el;
+                crate::progress::update(&bar, sim.step, rate);
+            }
         }
-        if (output.vtu_every > 0 && sim.step % output.vtu_every == 0) || sim.step == total_steps {
-            let last = sim.step == total_steps;
-            write_frame(&sim, out, &mut pvd, frames.as_mut(), false, last)?;
-        }
-        // A shortened last step is off the step grid: no checkpoint there (a run resumed
-        // to a later end continues from the last full-step checkpoint).
-        if output.checkpoint_every > 0 && sim.step % output.checkpoint_every == 0 && sim.on_grid() {
-            hist.flush()?;
-            write_checkpoint_file(
-                &checkpoint,
-                &fingerprint,
-                static_result.as_ref(),
-                &sim,
-                &[peak_u, peak_v],
-            )?;
-        }
-        if sim.step % 64 == 0 {
-            let el = t0.elapsed().as_secs_f64().max(1e-9);
-            let rate = (sim.step - start_step) as f64 * n_elements as f64 / el;
-            crate::progress::update(&bar, sim.step, rate);
-        }
-    }
+        Ok(())
+    };
+    let outcome = stepping();
     bar.finish_and_clear();
-    hist.finish()?;
     let wall = t0.elapsed().as_secs_f64();
+    // A failed run: its histories up to the failure, its failing state as the last frame,
+    // and summary.json saying why (docs/outputs.md, "A failed run").
+    let (status, error, failure_frame) = match &outcome {
+        Ok(()) => ("completed", None, None),
+        Err(e) => {
+            let mut text = e.to_string();
+            if let Err(h) = hist.flush() {
+                text += &format!("; histories.csv could not be completed: {h}");
+            }
+            let frame = match write_failure_frame(&mut sim, e, out, &mut pvd) {
+                Ok(name) => Some(name),
+                Err(f) => {
+                    text += &format!("; the failure frame could not be written: {f}");
+                    None
+                }
+            };
+            ("failed", Some(text), frame)
+        }
+    };
+    if outcome.is_ok() {
+        hist.finish()?;
+    }
     let steps_run = sim.step - start_step;
     let last_dt = sim.last_step();
     let summary = RunSummary {
         case: label,
+        status,
+        error,
+        failure_frame,
+        warnings: warnings.clone(),
         title,
         nodes: sim.u.len(),
         elements: n_elements,
@@ -763,5 +886,5 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
         probes: columns.probes,
     };
     write_summary(&out.join("summary.json"), &summary)?;
-    Ok(summary)
+    outcome.map(|()| summary)
 }

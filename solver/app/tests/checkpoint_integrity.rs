@@ -250,3 +250,68 @@ fn a_resume_removes_the_temporary_files_of_a_killed_checkpoint_write() {
     assert!(!killed.exists(), "temporary file of a killed write kept");
     let _ = std::fs::remove_dir_all(&out);
 }
+
+/// The cube of SLIDING's base shaken at its base by a one-column record file `acc.txt`.
+fn shaken_case(end: &str) -> String {
+    format!(
+        r#"
+title = "shaken cube"
+[time]
+end = {end}
+[output]
+checkpoint_every = 4
+[mesh]
+[[mesh.blocks]]
+name = "b"
+origin = [0.0, 0.0, 0.0]
+size = [1.0, 1.0, 1.0]
+divisions = [2, 2, 2]
+[materials.rock]
+model = "elastic"
+young = 20e9
+poisson = 0.25
+density = 2700.0
+[[regions]]
+name = "b"
+material = "rock"
+[motions.rec]
+file = "acc.txt"
+units = "m/s2"
+dt = 0.0005
+[[boundary.prescribed]]
+set = "b.zmin"
+dof = "x"
+kind = "acceleration"
+history = {{ type = "motion", motion = "rec", component = "a" }}
+"#
+    )
+}
+
+#[test]
+fn an_edited_motion_record_is_refused_naming_the_motion() {
+    let root = dir("motion");
+    let out = root.join("out");
+    std::fs::create_dir_all(&root).unwrap();
+    let record = "0.0\n0.5\n1.0\n0.5\n0.0\n-0.5\n-1.0\n-0.5\n0.0\n";
+    std::fs::write(root.join("acc.txt"), record).unwrap();
+    let go = |end: &str, resume: bool| {
+        run_case(
+            parse_case(&shaken_case(end), "shaken.toml", &root).unwrap(),
+            &opts(&out, resume, false),
+        )
+    };
+    go("0.0015", false).unwrap();
+    // Same path, same case text; one sample of the record changed.
+    std::fs::write(root.join("acc.txt"), record.replace("\n1.0\n", "\n1.2\n")).unwrap();
+    let e = go("0.003", true).unwrap_err().to_string();
+    assert!(
+        e.contains("the record of ground motion rec changed")
+            && !e.contains("case field")
+            && !e.contains("mesh"),
+        "{e}"
+    );
+    // Restored, the file resumes.
+    std::fs::write(root.join("acc.txt"), record).unwrap();
+    assert!(go("0.003", true).unwrap().resumed_from_step.is_some());
+    let _ = std::fs::remove_dir_all(&root);
+}

@@ -11,11 +11,17 @@
 //! The mesh is hashed from what the solver uses — coordinates (bit patterns), connectivity,
 //! element regions and their names, node, element and face sets — so an edited Gmsh file,
 //! or a generator whose output changed, is seen even when the case text is the same.
+//! Likewise every ground motion is hashed from the samples the solver uses (after reading
+//! and processing), under the pseudo-field `motions.NAME (record)`: an edited record file
+//! — same path, other content — is refused on resume like an edited mesh (issue 13.5).
 
 use std::collections::BTreeMap;
 
 use crate::fnv::Fnv64;
 use crate::mesh::Mesh;
+
+/// Suffix of the pseudo-field that holds the hash of a ground motion's samples.
+const RECORD: &str = " (record)";
 
 /// Fields of the case that a resumed run may change.
 const NOT_HASHED: [&str; 3] = ["title", "time.end", "time.max_steps"];
@@ -44,6 +50,30 @@ impl CaseFingerprint {
         })
     }
 
+    /// Add the hash of every ground motion the case uses, from its processed samples
+    /// (step, and each component's name, axis, acceleration, velocity and displacement),
+    /// as the pseudo-field `motions.NAME (record)`.
+    pub fn add_motions(&mut self, motions: &crate::motion::Motions) {
+        for (name, m) in motions {
+            let mut h = Fnv64::new();
+            h.u64(m.dt.to_bits());
+            h.u64(m.components.len() as u64);
+            for c in &m.components {
+                h.str(&c.name);
+                h.str(&format!("{:?}", c.axis));
+                h.u64(c.dt.to_bits());
+                for series in [&c.acceleration, &c.velocity, &c.displacement] {
+                    h.u64(series.len() as u64);
+                    for x in series.iter() {
+                        h.u64(x.to_bits());
+                    }
+                }
+            }
+            self.fields
+                .insert(format!("motions.{name}{RECORD}"), h.finish());
+        }
+    }
+
     /// What differs from `earlier` (the fingerprint a checkpoint was written with) to
     /// `self` (the case now): one line per changed, added or removed field, then the mesh.
     pub fn changes_since(&self, earlier: &CaseFingerprint) -> Vec<String> {
@@ -51,7 +81,16 @@ impl CaseFingerprint {
         for (path, h) in &earlier.fields {
             match self.fields.get(path) {
                 Some(now) if now == h => {}
-                Some(_) => out.push(format!("case field {path} changed")),
+                Some(_) => match path
+                    .strip_suffix(RECORD)
+                    .map(|m| m.strip_prefix("motions.").unwrap_or(m))
+                {
+                    Some(m) => out.push(format!(
+                        "the record of ground motion {m} changed (its file's content or its \
+                         processing)"
+                    )),
+                    None => out.push(format!("case field {path} changed")),
+                },
                 None => out.push(format!("case field {path} removed")),
             }
         }

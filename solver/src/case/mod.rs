@@ -9,7 +9,9 @@ pub mod fingerprint;
 pub mod probes;
 mod schema;
 mod static_schema;
+pub mod warnings;
 
 pub use build::{build_materials, load_case, parse_case, parse_case_with_motions, Case};
 pub use schema::*;
 pub use static_schema::*;
+pub use warnings::CaseWarning;

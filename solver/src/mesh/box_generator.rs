@@ -53,6 +53,17 @@ fn default_merge_tolerance() -> f64 {
     1e-6
 }
 
+/// Largest grading (and smallest, its inverse) of a block axis: a million-fold ratio of
+/// the last to the first element length, far beyond any graded mesh (≈ 20); at 1e200 the
+/// geometric series overflows and the elements degenerate.
+const MAX_GRADING: f64 = 1e6;
+
+/// Shortest block edge (m): 1 nm is atomic scale, where no continuum model holds (and
+/// 1e-300 m gives elements whose stiffness underflows into a "degenerate" element).
+const MIN_LENGTH: f64 = 1e-9;
+/// Longest block edge and largest coordinate (m): a hundred Earth diameters (1.3e7 m).
+const MAX_LENGTH: f64 = 1e9;
+
 const AXES: [&str; 3] = ["x", "y", "z"];
 
 /// Node coordinates along one axis: `n` intervals over `length`, geometric grading so
@@ -90,12 +101,23 @@ impl BlockSpec {
                     "must be a finite length > 0 (m)",
                 ));
             }
-            if !self.origin[d].is_finite() {
+            if !(MIN_LENGTH..=MAX_LENGTH).contains(&self.size[d]) {
+                return Err(DcfmError::invalid(
+                    file,
+                    format!("{field}.size[{d}]"),
+                    format!("{:e}", self.size[d]),
+                    format!(
+                        "a length from {MIN_LENGTH:e} m (atoms, not a continuum) to \
+                         {MAX_LENGTH:e} m (a hundred Earth diameters); a units slip?"
+                    ),
+                ));
+            }
+            if !(self.origin[d].is_finite() && self.origin[d].abs() <= MAX_LENGTH) {
                 return Err(DcfmError::invalid(
                     file,
                     format!("{field}.origin[{d}]"),
-                    self.origin[d],
-                    "must be finite (m)",
+                    format!("{:e}", self.origin[d]),
+                    format!("a finite coordinate within ±{MAX_LENGTH:e} m"),
                 ));
             }
             if self.divisions[d] == 0 || self.divisions[d] > 100_000 {
@@ -106,12 +128,18 @@ impl BlockSpec {
                     "must be between 1 and 100000",
                 ));
             }
-            if !(self.grading[d].is_finite() && self.grading[d] > 0.0) {
+            let g = self.grading[d];
+            if !(g.is_finite() && (1.0 / MAX_GRADING..=MAX_GRADING).contains(&g)) {
                 return Err(DcfmError::invalid(
                     file,
                     format!("{field}.grading[{d}]"),
-                    self.grading[d],
-                    "must be a finite ratio > 0",
+                    format!("{g:e}"),
+                    format!(
+                        "a finite ratio of the last to the first element length from 1e-6 \
+                         to {} (a million-fold ratio in one block; beyond it the smallest \
+                         elements vanish into the round-off of the coordinates)",
+                        crate::readable::engineering(MAX_GRADING)
+                    ),
                 ));
             }
         }

@@ -593,6 +593,19 @@ impl Simulation {
         Ok(())
     }
 
+    /// After a step that the instability check stopped ([`DcfmError::Unstable`]): take
+    /// the state that step reached — U^{n+1} and V^{n+½} as they were checked, every node
+    /// computed — in place of the last committed one, at step n + 1 and time tⁿ + Δt, so
+    /// that the failure frame of a failed run shows the diverging motion
+    /// (docs/outputs.md, "A failed run"). Material states, accelerations and energies stay
+    /// those of step n. The simulation must not step again after this.
+    pub fn adopt_failed_step(&mut self) {
+        std::mem::swap(&mut self.u, &mut self.u_next);
+        std::mem::swap(&mut self.v, &mut self.v_next);
+        self.step += 1;
+        self.time += self.dt;
+    }
+
     /// The error of an instability found at `node`, with its likely cause read from what
     /// is large there (issue 13 item 3), in this order:
     /// 1. the step above a stability limit — and which term sets that limit: the elements

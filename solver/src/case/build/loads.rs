@@ -37,7 +37,10 @@ pub(super) fn build_loads(model: &mut Model, section: &LoadSection, label: &str)
 
 /// Checked Rayleigh coefficients of a damping table at `field`.
 fn rayleigh(section: &DampingSection, label: &str, field: &str) -> Result<Rayleigh> {
-    for (name, v) in [("alpha", section.alpha), ("beta", section.beta)] {
+    for (name, v, most, unit) in [
+        ("alpha", section.alpha, MAX_ALPHA, "1/s"),
+        ("beta", section.beta, MAX_BETA, "s"),
+    ] {
         if !(v.is_finite() && v >= 0.0) {
             return Err(DcfmError::invalid(
                 label,
@@ -46,12 +49,32 @@ fn rayleigh(section: &DampingSection, label: &str, field: &str) -> Result<Raylei
                 "must be finite and ≥ 0",
             ));
         }
+        if v > most {
+            return Err(DcfmError::invalid(
+                label,
+                format!("{field}.{name}"),
+                format!("{v:e}"),
+                format!(
+                    "at most {most:e} {unit}: beyond it no mode of any model is damped less \
+                     than critically (ξ = α/2ω + βω/2 = 1 at a 100 MHz mode for α, at a \
+                     0.3 mHz mode for β), and the damped stable step overflows; a units slip?"
+                ),
+            ));
+        }
     }
     Ok(Rayleigh {
         alpha: section.alpha,
         beta: section.beta,
     })
 }
+
+/// Largest α (1/s): ξ = α/(2ω) = 1 at ω = 5e8 rad/s (a 100 MHz mode, far above the
+/// highest mode of any mesh); larger values only make the damped stable step vanish, and
+/// near 1e154 overflow it (issue 13: refused at the field, not as `time.dt = inf`).
+const MAX_ALPHA: f64 = 1e9;
+/// Largest β (s): ξ = βω/2 = 1 at ω = 2e-3 rad/s (a 0.3 mHz mode, below the lowest mode of
+/// any model); larger values only make the damped stable step vanish.
+const MAX_BETA: f64 = 1e3;
 
 /// Rayleigh coefficients of `[damping]` and of the regions with their own.
 pub(super) fn build_damping(

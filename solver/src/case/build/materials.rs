@@ -19,6 +19,7 @@ pub fn build_materials(
     let mut materials = BTreeMap::new();
     for (name, m) in section {
         let field = format!("materials.{name}");
+        super::plausibility::check_material_limits(name, m, label)?;
         let elastic = Elastic::new(name, m.young, m.poisson, m.density).map_err(|e| match e {
             DcfmError::Material { message, .. } => {
                 let (key, rest) = message.split_once(" = ").unwrap_or(("", &message));

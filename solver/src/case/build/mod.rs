@@ -12,6 +12,7 @@ mod materials;
 mod mesh;
 mod motions;
 mod output;
+mod plausibility;
 mod static_stage;
 mod time;
 
@@ -44,6 +45,10 @@ pub struct Case {
     pub static_plan: Option<crate::stage::static_stage::StaticPlan>,
     /// Most steps a run may take without being asked to (`time.max_steps`).
     pub max_steps: u64,
+    /// Values valid but far outside what their fields mean (units slips), in the order
+    /// of the case's sections; `dcfm check` and `dcfm run` print them, summary.json lists
+    /// them.
+    pub warnings: Vec<crate::case::warnings::CaseWarning>,
     /// Hashes of the case's fields and its mesh, written into checkpoints so that a
     /// resume can refuse a checkpoint of another case.
     pub fingerprint: crate::case::fingerprint::CaseFingerprint,
@@ -101,6 +106,7 @@ pub fn parse_case_with_motions(
             file: label.to_string(),
             message,
         })?;
+    case.fingerprint.add_motions(&case.motions);
     Ok(case)
 }
 
@@ -137,6 +143,16 @@ fn build(
     let dt = model
         .time_step(file.time.dt, file.time.safety)
         .map_err(|e| e.in_file(label))?;
+    let critical = model.critical_step_with_damping();
+    time::check_vanishing_dt(
+        label,
+        file.time.dt,
+        (dt, file.time.safety),
+        file.time.end,
+        critical,
+        plausibility::SMALL_DT_FRACTION,
+    )?;
+    let warnings = plausibility::warnings(&file, label, dt, critical);
     Ok(Case {
         file: PathBuf::from(label),
         title: file.title,
@@ -149,6 +165,7 @@ fn build(
         motions,
         static_plan,
         max_steps,
+        warnings,
         fingerprint: Default::default(),
     })
 }

@@ -148,8 +148,11 @@ const YOUNG_IMPOSSIBLE: f64 = 1e15;
 const YOUNG_TOO_SOFT: f64 = 1.0;
 /// Above 100 000 kg/m³ (four times osmium) no matter at ordinary pressure.
 const DENSITY_IMPOSSIBLE: f64 = 1e5;
-/// Below 0.01 kg/m³ (a hundredth of air) nothing carries stress.
-const DENSITY_TOO_LIGHT: f64 = 1e-2;
+/// A weightless material is a legitimate static device (concrete placed on settled rock
+/// without its own weight, density ≈ 1e-9 kg/m³: warned, not refused); below 1e-12 kg/m³
+/// the masses are no longer a model of anything — the inverse masses overflow towards 1e300
+/// and the stable step falls a million-fold below any solid's.
+const DENSITY_TOO_LIGHT: f64 = 1e-12;
 
 /// Refuse a Young's modulus or density that no material has, at its field.
 pub(super) fn check_material_limits(name: &str, m: &MaterialSection, label: &str) -> Result<()> {
@@ -174,8 +177,8 @@ pub(super) fn check_material_limits(name: &str, m: &MaterialSection, label: &str
             format!("materials.{name}.density"),
             engineering(rho),
             format!(
-                "no solid has it: from {} kg/m³ (a hundredth of air) to {} kg/m³ (four \
-                 times osmium, the densest element); a units slip?",
+                "no model has it: from {} kg/m³ (a weightless material) to {} kg/m³ \
+                 (four times osmium, the densest element); a units slip?",
                 engineering(DENSITY_TOO_LIGHT),
                 engineering(DENSITY_IMPOSSIBLE)
             ),

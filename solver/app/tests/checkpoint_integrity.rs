@@ -4,87 +4,39 @@
 //! wrong, unless the user asks to continue with the changed case.
 
 use std::path::{Path, PathBuf};
+use std::sync::LazyLock;
+
+mod common;
 
 use dcfm::case::parse_case;
 use dcfm_app::run::{run_case, RunOptions, RunSummary};
 
 /// A block on a base with a frictional interface (μs = 0.5), checkpoints every 10 steps.
-const SLIDING: &str = r#"
-title = "block sliding on a base"
-[time]
-end = 0.004
-[output]
-history_every = 2
-checkpoint_every = 10
-[mesh]
-split = [["base", "block"]]
-[[mesh.blocks]]
-name = "base"
-origin = [0.0, 0.0, 0.0]
-size = [4.0, 2.0, 1.0]
-divisions = [4, 2, 1]
-[[mesh.blocks]]
-name = "block"
-origin = [1.0, 0.0, 1.0]
-size = [1.0, 2.0, 1.0]
-divisions = [1, 2, 1]
-[materials.rock]
-model = "elastic"
-young = 20e9
-poisson = 0.25
-density = 2700.0
-[[regions]]
-name = "base"
-material = "rock"
-[[regions]]
-name = "block"
-material = "rock"
-[[boundary.fixed]]
-set = "base"
-dofs = "xyz"
-[loads.gravity]
-acceleration = [0.0, 0.0, -9.81]
-[[loads.nodal]]
-set = "block"
-force = [8000.0, 0.0, 0.0]
-[[interfaces]]
-name = "slip"
-surface_a = "block-base"
-surface_b = "base-block"
-mu_s = 0.5
-mu_d = 0.4
-cohesion = 1e3
-b_may_extend = true
-"#;
+static SLIDING: LazyLock<String> = LazyLock::new(|| common::sliding_block("0.004"));
 
 /// The end of the "killed" first part: its last checkpoint is at step 10 or 20.
 const SHORT_END: &str = "end = 0.0025";
 
 fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("dcfm-ckpt-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    d
+    common::fresh_dir("ckpt", name)
 }
 
 fn opts(out: &Path, resume: bool, changed: bool) -> RunOptions {
     RunOptions {
-        out: out.to_path_buf(),
         resume,
         resume_with_changed_case: changed,
-        progress: false,
-        ..Default::default()
+        ..common::options(out)
     }
 }
 
-fn run(text: &str, dir: &Path, o: &RunOptions) -> dcfm::Result<RunSummary> {
-    run_case(parse_case(text, "sliding.toml", dir).unwrap(), o)
+fn run(text: &str, o: &RunOptions) -> dcfm::Result<RunSummary> {
+    common::run_text("sliding.toml", text, o)
 }
 
 /// Run the first part of SLIDING into `out`, as if killed after its last checkpoint.
 fn first_part(out: &Path) {
     run(
         &SLIDING.replace("end = 0.004", SHORT_END),
-        Path::new("."),
         &opts(out, false, false),
     )
     .unwrap();
@@ -101,7 +53,7 @@ fn a_flipped_bit_is_refused_naming_the_checksum() {
     let k = bytes.len() / 2;
     bytes[k] ^= 0x10;
     std::fs::write(&path, &bytes).unwrap();
-    let e = run(SLIDING, Path::new("."), &opts(&out, true, false))
+    let e = run(&SLIDING, &opts(&out, true, false))
         .unwrap_err()
         .to_string();
     assert!(
@@ -109,7 +61,7 @@ fn a_flipped_bit_is_refused_naming_the_checksum() {
         "{e}"
     );
     // Not even the flag that accepts a changed case takes a corrupted file.
-    let e = run(SLIDING, Path::new("."), &opts(&out, true, true))
+    let e = run(&SLIDING, &opts(&out, true, true))
         .unwrap_err()
         .to_string();
     assert!(e.contains("checksum mismatch"), "{e}");
@@ -121,7 +73,7 @@ fn a_changed_friction_is_refused_naming_the_field_unless_asked() {
     let out = dir("mu");
     first_part(&out);
     let changed = SLIDING.replace("mu_s = 0.5", "mu_s = 0.45");
-    let e = run(&changed, Path::new("."), &opts(&out, true, false))
+    let e = run(&changed, &opts(&out, true, false))
         .unwrap_err()
         .to_string();
     assert!(
@@ -132,7 +84,7 @@ fn a_changed_friction_is_refused_naming_the_field_unless_asked() {
         "{e}"
     );
     // Asked to: the run resumes and says what changed, in summary.json too.
-    let s = run(&changed, Path::new("."), &opts(&out, true, true)).unwrap();
+    let s = run(&changed, &opts(&out, true, true)).unwrap();
     assert!(s.resumed_from_step.is_some_and(|k| k > 0));
     assert_eq!(
         s.resumed_with_changes,
@@ -151,7 +103,7 @@ fn a_case_with_only_its_end_time_and_title_changed_resumes() {
     let text = SLIDING
         .replace("block sliding on a base", "the longer run")
         .replace("cohesion = 1e3", "cohesion = 1000.0 # Pa");
-    let s = run(&text, Path::new("."), &opts(&out, true, false)).unwrap();
+    let s = run(&text, &opts(&out, true, false)).unwrap();
     assert!(s.resumed_from_step.is_some_and(|k| k > 0));
     assert!(s.resumed_with_changes.is_empty());
     let _ = std::fs::remove_dir_all(&out);
@@ -229,7 +181,7 @@ fn a_checkpoint_of_the_older_format_is_refused_naming_it() {
     let mut bytes = b"DCFMCKP4".to_vec();
     bytes.extend(vec![0u8; 256]);
     std::fs::write(&path, bytes).unwrap();
-    let e = run(SLIDING, Path::new("."), &opts(&out, true, true))
+    let e = run(&SLIDING, &opts(&out, true, true))
         .unwrap_err()
         .to_string();
     assert!(
@@ -246,7 +198,7 @@ fn a_resume_removes_the_temporary_files_of_a_killed_checkpoint_write() {
     // What a process killed while writing its checkpoint leaves (another pid).
     let killed = out.join(".checkpoint.bin.4000000.3.tmp");
     std::fs::write(&killed, b"half a checkpoint").unwrap();
-    run(SLIDING, Path::new("."), &opts(&out, true, false)).unwrap();
+    run(&SLIDING, &opts(&out, true, false)).unwrap();
     assert!(!killed.exists(), "temporary file of a killed write kept");
     let _ = std::fs::remove_dir_all(&out);
 }

@@ -5,42 +5,20 @@
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
+use std::sync::LazyLock;
+
+mod common;
 
 use dcfm::case::parse_case;
-use dcfm_app::run::{run_case, RunOptions};
+use dcfm_app::run::run_case;
 
 /// A 1 m rock cube of 2 × 2 × 2 elements on a fixed base: c_p = 2981 m/s, stable step
 /// ≈ 1.3e-4 s.
-const CUBE: &str = r#"
-title = "cube"
-[time]
-end = 0.002
-[mesh]
-[[mesh.blocks]]
-name = "b"
-origin = [0.0, 0.0, 0.0]
-size = [1.0, 1.0, 1.0]
-divisions = [2, 2, 2]
-[materials.rock]
-model = "elastic"
-young = 20e9
-poisson = 0.25
-density = 2700.0
-[[regions]]
-name = "b"
-material = "rock"
-[[boundary.fixed]]
-set = "b.zmin"
-dofs = "xyz"
-[loads.gravity]
-acceleration = [0.0, 0.0, -9.81]
-"#;
+static CUBE: LazyLock<String> =
+    LazyLock::new(|| common::elastic_block("cube", "0.002", 1.0, common::GRAVITY));
 
 fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("dcfm-honest-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    common::created_dir("honest", name)
 }
 
 fn warnings_of(text: &str) -> Vec<String> {
@@ -64,7 +42,7 @@ fn has(warnings: &[String], needle: &str) -> bool {
 
 #[test]
 fn a_sound_case_has_no_warnings() {
-    assert_eq!(warnings_of(CUBE), Vec::<String>::new());
+    assert_eq!(warnings_of(&CUBE), Vec::<String>::new());
 }
 
 #[test]
@@ -209,21 +187,13 @@ fn impossible_values_are_refused_at_their_field() {
     ));
 }
 
-fn run_opts(out: &Path) -> RunOptions {
-    RunOptions {
-        out: out.to_path_buf(),
-        progress: false,
-        ..Default::default()
-    }
-}
-
 #[test]
 fn summary_json_lists_the_warnings_and_a_completed_status() {
     let out = dir("warned");
     let text = CUBE.replace("-9.81]", "-9810.0]");
     let s = run_case(
         parse_case(&text, "c.toml", Path::new(".")).unwrap(),
-        &run_opts(&out),
+        &common::options(&out),
     )
     .unwrap();
     assert_eq!((s.status, s.error.as_deref()), ("completed", None));
@@ -249,7 +219,9 @@ fn exploding() -> String {
 fn a_failed_run_leaves_its_status_its_error_and_its_failing_state() {
     let out = dir("failed");
     let case = parse_case(&exploding(), "c.toml", Path::new(".")).unwrap();
-    let e = run_case(case, &run_opts(&out)).unwrap_err().to_string();
+    let e = run_case(case, &common::options(&out))
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("unstable"), "{e}");
     let v: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
@@ -273,8 +245,8 @@ fn a_failed_run_leaves_its_status_its_error_and_its_failing_state() {
     }
     // A sound run in the same folder replaces it: no failure frame left.
     run_case(
-        parse_case(CUBE, "c.toml", Path::new(".")).unwrap(),
-        &run_opts(&out),
+        parse_case(&CUBE, "c.toml", Path::new(".")).unwrap(),
+        &common::options(&out),
     )
     .unwrap();
     assert!(!out.join(&frame).exists());
@@ -333,7 +305,9 @@ fn a_run_failing_on_another_error_keeps_its_last_state_as_the_failure_frame() {
         "[output]\nvtu_every = 1\n[loads.gravity]",
     );
     let case = parse_case(&text, "c.toml", Path::new(".")).unwrap();
-    let e = run_case(case, &run_opts(&out)).unwrap_err().to_string();
+    let e = run_case(case, &common::options(&out))
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("mesh_000001.vtu"), "{e}");
     let v: serde_json::Value =
         serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap()).unwrap();
@@ -366,7 +340,7 @@ fn absurd_lengths_damping_and_gravity_are_named_at_their_field() {
     }
     // Rayleigh coefficients of 1e300 read as "time.dt = inf" before.
     for (key, field) in [("alpha", "damping.alpha"), ("beta", "damping.beta")] {
-        let e = error_of(&format!("{CUBE}[damping]\n{key} = 1e300\n"));
+        let e = error_of(&format!("{}[damping]\n{key} = 1e300\n", *CUBE));
         assert!(
             e.starts_with(&format!("c.toml: {field} = 1e300: at most")),
             "{e}"

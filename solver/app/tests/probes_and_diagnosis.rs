@@ -2,49 +2,31 @@
 //! (item 2) and the diagnosis of an instability (issue 13 item 3), through case files and
 //! the application's run driver.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
+mod common;
+
+use common::Histories;
 use dcfm::case::parse_case;
 use dcfm::error::DcfmError;
 use dcfm::stage::Simulation;
-use dcfm_app::run::{run_case, RunOptions};
 
 /// A 2 m cube of 2 × 2 × 2 elements (nodes on the 1 m grid), fixed at its base, pushed on
-/// its top.
-const BLOCK: &str = r#"
-title = "block"
-[time]
-end = 0.0005
-[output]
-vtu_every = 0
-PROBES
-[mesh]
-[[mesh.blocks]]
-name = "b"
-origin = [0.0, 0.0, 0.0]
-size = [2.0, 2.0, 2.0]
-divisions = [2, 2, 2]
-[materials.rock]
-model = "elastic"
-young = 20e9
-poisson = 0.25
-density = 2700.0
-[[regions]]
-name = "b"
-material = "rock"
-[[boundary.fixed]]
-set = "b.zmin"
-dofs = "xyz"
-[[loads.nodal]]
-set = "b.zmax"
-force = [1e5, 0.0, -1e5]
-history = { type = "ramp", rate = 1000.0 }
-[damping]
-alpha = ALPHA
-"#;
+/// its top, with Rayleigh damping `alpha` (1/s), no field files and `probes` in `[output]`.
+fn damped_block(probes: &str, alpha: &str) -> String {
+    common::elastic_block(
+        "block",
+        "0.0005",
+        2.0,
+        &format!(
+            "{}[damping]\nalpha = {alpha}\n[output]\nvtu_every = 0\n{probes}\n",
+            common::TOP_RAMP
+        ),
+    )
+}
 
 fn block(probes: &str) -> String {
-    BLOCK.replace("PROBES", probes).replace("ALPHA", "0.0")
+    damped_block(probes, "0.0")
 }
 
 fn err(text: &str) -> String {
@@ -54,47 +36,13 @@ fn err(text: &str) -> String {
     }
 }
 
-fn out_dir(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("dcfm-probes-{}-{name}", std::process::id()));
+/// Run `text` and return its histories.csv.
+fn run_histories(text: &str, name: &str) -> Histories {
+    let dir = common::fresh_dir("probes", name);
+    common::run_text("case.toml", text, &common::options(&dir)).unwrap();
+    let h = Histories::read(&dir);
     let _ = std::fs::remove_dir_all(&dir);
-    dir
-}
-
-/// Run `text` and return histories.csv as (header, rows).
-fn run_histories(text: &str, name: &str) -> (Vec<String>, Vec<Vec<f64>>) {
-    let dir = out_dir(name);
-    let case = parse_case(text, "case.toml", Path::new(".")).unwrap();
-    run_case(
-        case,
-        &RunOptions {
-            out: dir.clone(),
-            resume: false,
-            progress: false,
-            ..Default::default()
-        },
-    )
-    .unwrap();
-    let csv = std::fs::read_to_string(dir.join("histories.csv")).unwrap();
-    let _ = std::fs::remove_dir_all(&dir);
-    let mut lines = csv.lines();
-    let header = lines
-        .next()
-        .unwrap()
-        .split(',')
-        .map(str::to_string)
-        .collect();
-    let rows = lines
-        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
-        .collect();
-    (header, rows)
-}
-
-fn column(h: &(Vec<String>, Vec<Vec<f64>>), name: &str) -> Vec<f64> {
-    let k =
-        h.0.iter()
-            .position(|c| c == name)
-            .unwrap_or_else(|| panic!("no column {name} in {:?}", h.0));
-    h.1.iter().map(|r| r[k]).collect()
+    h
 }
 
 #[test]
@@ -147,7 +95,7 @@ fn named_columns_read_the_same_values_as_node_and_element_ids() {
     .into_iter()
     .chain([("core_szz", format!("elem{e}_szz"))])
     {
-        let (cx, cy) = (column(&a, x), column(&b, &y));
+        let (cx, cy) = (a.column(x), b.column(&y));
         assert!(cx.iter().any(|v| *v != 0.0), "{x} stays zero");
         assert_eq!(cx, cy, "{x} against {y}");
     }
@@ -181,10 +129,10 @@ fn a_mean_over_a_set_is_the_mean_of_its_members() {
         ("sxx", &element_labels, "all"),
         ("szz", &element_labels, "all"),
     ] {
-        let m = column(&b, &format!("{group}_{q}"));
+        let m = b.column(&format!("{group}_{q}"));
         let cols: Vec<Vec<f64>> = members
             .iter()
-            .map(|l| column(&a, &format!("{l}_{q}")))
+            .map(|l| a.column(&format!("{l}_{q}")))
             .collect();
         // Equal volumes: the volume mean is the plain mean.
         for (row, &mv) in m.iter().enumerate() {
@@ -280,12 +228,12 @@ fn contact_state_and_forces_of_a_probe_node_follow_the_bar_impact() {
             "[[output.probes]]\nname = \"hit\"\nat = [2.0, 0.0, 0.0]",
         );
     let h = run_histories(&text, "w05");
-    let t = column(&h, "time");
-    let state = column(&h, "hit_contact_state");
-    let normal = column(&h, "hit_normal_force");
+    let t = h.column("time");
+    let state = h.column("hit_contact_state");
+    let normal = h.column("hit_normal_force");
     let areas: Vec<Vec<f64>> = ["bonded", "stick", "slide", "separated"]
         .iter()
-        .map(|k| column(&h, &format!("area_{k}_impact")))
+        .map(|k| h.column(&format!("area_{k}_impact")))
         .collect();
     let contact_end = 2.0 * 2.0 / (30e9f64 / 2400.0).sqrt();
     let mut plateau = Vec::new();
@@ -347,9 +295,7 @@ fn a_step_above_the_damped_limit_names_rayleigh_damping() {
     // ξ = 0.75 at ω_max = 2/Δt: the damped limit is (√(1 + ξ²) − ξ) = 0.5 of the undamped.
     let omega = 2.0 / undamped.model.critical_step();
     let alpha = 1.5 * omega;
-    let text = BLOCK
-        .replace("PROBES", "")
-        .replace("ALPHA", &format!("{alpha:e}"));
+    let text = damped_block("", &format!("{alpha:e}"));
     let case = parse_case(&text, "block.toml", Path::new(".")).unwrap();
     let ratio = case.model.critical_step_with_damping() / case.model.critical_step();
     assert!((ratio - 0.5).abs() < 1e-12, "{ratio}");

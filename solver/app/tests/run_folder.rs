@@ -5,6 +5,8 @@
 use std::collections::BTreeSet;
 use std::path::{Path, PathBuf};
 
+mod common;
+
 use dcfm::case::parse_case;
 use dcfm_app::output::PvdCollection;
 use dcfm_app::run::{run_case, RunOptions, RunSummary};
@@ -44,19 +46,16 @@ alpha = 1000.0
 "#;
 
 fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("dcfm-folder-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    d
+    common::fresh_dir("folder", name)
 }
 
 fn run(text: &str, out: &Path, resume: bool) -> RunSummary {
-    run_case(
-        parse_case(text, "decaying.toml", Path::new(".")).unwrap(),
+    common::run_text(
+        "decaying.toml",
+        text,
         &RunOptions {
-            out: out.to_path_buf(),
             resume,
-            progress: false,
-            ..Default::default()
+            ..common::options(out)
         },
     )
     .unwrap()

@@ -5,51 +5,28 @@
 
 use std::path::{Path, PathBuf};
 use std::process::Command;
-use std::sync::{Arc, Mutex};
+use std::sync::{Arc, LazyLock, Mutex};
+
+mod common;
 
 use dcfm::case::parse_case;
-use dcfm_app::run::{run_case, RunOptions};
+use dcfm_app::run::RunOptions;
 
 /// One 2 m block of 2×2×2 elements: Δt = 0.9 × 2.598e-4 s, so 9 steps to 0.002 s.
-const SMALL: &str = r#"
-title = "small"
-[time]
-end = 0.002
-[mesh]
-[[mesh.blocks]]
-name = "b"
-origin = [0.0, 0.0, 0.0]
-size = [2.0, 2.0, 2.0]
-divisions = [2, 2, 2]
-[materials.rock]
-model = "elastic"
-young = 20e9
-poisson = 0.25
-density = 2700.0
-[[regions]]
-name = "b"
-material = "rock"
-[[boundary.fixed]]
-set = "b.zmin"
-dofs = "xyz"
-[loads.gravity]
-acceleration = [0.0, 0.0, -9.81]
-"#;
+static SMALL: LazyLock<String> =
+    LazyLock::new(|| common::elastic_block("small", "0.002", 2.0, common::GRAVITY));
 
 fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("dcfm-limits-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
+    common::created_dir("limits", name)
 }
 
 fn run(text: &str, out: &Path, allow_long: bool) -> dcfm::Result<dcfm_app::run::RunSummary> {
-    run_case(
-        parse_case(text, "small.toml", Path::new(".")).unwrap(),
+    common::run_text(
+        "small.toml",
+        text,
         &RunOptions {
-            out: out.to_path_buf(),
             allow_long,
-            ..Default::default()
+            ..common::options(out)
         },
     )
 }
@@ -221,7 +198,7 @@ fn check_prints_huge_counts_readably_with_a_wall_time_and_the_budget_warning() {
 fn check_estimates_the_wall_time_of_an_ordinary_case() {
     let d = dir("check-small");
     let case = d.join("small.toml");
-    std::fs::write(&case, SMALL).unwrap();
+    std::fs::write(&case, &*SMALL).unwrap();
     let (ok, out, err) = dcfm(&["check", case.to_str().unwrap()]);
     assert!(ok, "{err}");
     assert!(!out.contains("warning"), "{out}");
@@ -252,7 +229,7 @@ fn run_refuses_a_runaway_and_notes_capped_threads_and_a_missing_checkpoint() {
     );
 
     let small = d.join("small.toml");
-    std::fs::write(&small, SMALL).unwrap();
+    std::fs::write(&small, &*SMALL).unwrap();
     let (ok, stdout, err) = dcfm(&[
         "run",
         small.to_str().unwrap(),

@@ -2,43 +2,27 @@
 //! and resumed ends bit-identical to an uninterrupted run.
 
 use std::path::Path;
+use std::sync::LazyLock;
+
+mod common;
 
 use dcfm::case::parse_case;
 use dcfm_app::run::{run_case, RunOptions};
 
-const SMALL: &str = r#"
-title = "small"
-[time]
-end = 0.002
-[output]
-vtu_every = 5
-nodes = [0]
-elements = [0]
-checkpoint_every = 4
-[mesh]
-[[mesh.blocks]]
-name = "b"
-origin = [0.0, 0.0, 0.0]
-size = [2.0, 2.0, 2.0]
-divisions = [2, 2, 2]
-[materials.rock]
-model = "elastic"
-young = 20e9
-poisson = 0.25
-density = 2700.0
-[[regions]]
-name = "b"
-material = "rock"
-[[boundary.fixed]]
-set = "b.zmin"
-dofs = "xyz"
-[[loads.nodal]]
-set = "b.zmax"
-force = [1e5, 0.0, -1e5]
-history = { type = "ramp", rate = 1000.0 }
-[damping]
-beta = 1e-6
-"#;
+/// The 2 m block pushed on its top, lightly damped, with fields every 5 steps, node and
+/// element 0 in the histories and a checkpoint every 4 steps.
+static SMALL: LazyLock<String> = LazyLock::new(|| {
+    common::elastic_block(
+        "small",
+        "0.002",
+        2.0,
+        &format!(
+            "{}[damping]\nbeta = 1e-6\n[output]\nvtu_every = 5\nnodes = [0]\nelements = [0]\n\
+             checkpoint_every = 4\n",
+            common::TOP_RAMP
+        ),
+    )
+});
 
 #[test]
 fn resumed_run_matches_uninterrupted_run() {
@@ -51,7 +35,7 @@ fn resumed_run_matches_uninterrupted_run() {
         progress: false,
         ..Default::default()
     };
-    let case = parse_case(SMALL, "small.toml", Path::new(".")).unwrap();
+    let case = parse_case(&SMALL, "small.toml", Path::new(".")).unwrap();
     let full = run_case(case, &opts(&full_dir, false)).unwrap();
     // Interrupted: run to a shorter end (its last checkpoint is at a step multiple of 4),
     // then resume with the full end time.
@@ -63,7 +47,7 @@ fn resumed_run_matches_uninterrupted_run() {
     )
     .unwrap();
     let resumed = run_case(
-        parse_case(SMALL, "small.toml", Path::new(".")).unwrap(),
+        parse_case(&SMALL, "small.toml", Path::new(".")).unwrap(),
         &opts(&part_dir, true),
     )
     .unwrap();
@@ -83,53 +67,7 @@ fn resumed_run_matches_uninterrupted_run() {
     let _ = std::fs::remove_dir_all(&dir);
 }
 
-const SLIDING: &str = r#"
-title = "block sliding on a base"
-[time]
-end = 0.01
-[output]
-history_every = 2
-checkpoint_every = 10
-[mesh]
-split = [["base", "block"]]
-[[mesh.blocks]]
-name = "base"
-origin = [0.0, 0.0, 0.0]
-size = [4.0, 2.0, 1.0]
-divisions = [4, 2, 1]
-[[mesh.blocks]]
-name = "block"
-origin = [1.0, 0.0, 1.0]
-size = [1.0, 2.0, 1.0]
-divisions = [1, 2, 1]
-[materials.rock]
-model = "elastic"
-young = 20e9
-poisson = 0.25
-density = 2700.0
-[[regions]]
-name = "base"
-material = "rock"
-[[regions]]
-name = "block"
-material = "rock"
-[[boundary.fixed]]
-set = "base"
-dofs = "xyz"
-[loads.gravity]
-acceleration = [0.0, 0.0, -9.81]
-[[loads.nodal]]
-set = "block"
-force = [8000.0, 0.0, 0.0]
-[[interfaces]]
-name = "slip"
-surface_a = "block-base"
-surface_b = "base-block"
-mu_s = 0.5
-mu_d = 0.4
-cohesion = 1e3
-b_may_extend = true
-"#;
+static SLIDING: LazyLock<String> = LazyLock::new(|| common::sliding_block("0.01"));
 
 #[test]
 fn resumed_contact_run_matches_uninterrupted_run() {
@@ -142,7 +80,7 @@ fn resumed_contact_run_matches_uninterrupted_run() {
         ..Default::default()
     };
     let full = run_case(
-        parse_case(SLIDING, "s.toml", Path::new(".")).unwrap(),
+        parse_case(&SLIDING, "s.toml", Path::new(".")).unwrap(),
         &opts(&dir.join("full"), false),
     )
     .unwrap();
@@ -153,7 +91,7 @@ fn resumed_contact_run_matches_uninterrupted_run() {
     )
     .unwrap();
     let resumed = run_case(
-        parse_case(SLIDING, "s.toml", Path::new(".")).unwrap(),
+        parse_case(&SLIDING, "s.toml", Path::new(".")).unwrap(),
         &opts(&dir.join("part"), true),
     )
     .unwrap();

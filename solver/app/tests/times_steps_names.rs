@@ -4,9 +4,12 @@
 
 use std::path::{Path, PathBuf};
 
+mod common;
+
+use common::Histories;
 use dcfm::case::parse_case;
 use dcfm_app::output::read_string_arrays;
-use dcfm_app::run::{run_case, RunOptions, RunSummary};
+use dcfm_app::run::RunSummary;
 use vtkio::model::{Attribute, DataSet, Piece};
 
 /// Two blocks side by side along x (regions "left" and "right"), `[[regions]]` listing
@@ -50,22 +53,11 @@ dofs = "xyz"
 "#;
 
 fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("dcfm-tsn-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    d
+    common::fresh_dir("tsn", name)
 }
 
 fn run(text: &str, out: &Path) -> RunSummary {
-    run_case(
-        parse_case(text, "case.toml", Path::new(".")).unwrap(),
-        &RunOptions {
-            out: out.to_path_buf(),
-            resume: false,
-            progress: false,
-            ..Default::default()
-        },
-    )
-    .unwrap()
+    common::run_text("case.toml", text, &common::options(out)).unwrap()
 }
 
 fn cell_field(path: &Path, name: &str) -> Vec<f64> {
@@ -314,25 +306,6 @@ material = "rock"
 acceleration = [0.0, 0.0, -9.81]
 "#;
 
-fn histories(out: &Path) -> (Vec<String>, Vec<Vec<f64>>) {
-    let csv = std::fs::read_to_string(out.join("histories.csv")).unwrap();
-    let mut lines = csv.lines();
-    let header = lines
-        .next()
-        .unwrap()
-        .split(',')
-        .map(str::to_string)
-        .collect();
-    let rows = lines
-        .map(|l| l.split(',').map(|x| x.parse().unwrap()).collect())
-        .collect();
-    (header, rows)
-}
-
-fn col(h: &(Vec<String>, Vec<Vec<f64>>), name: &str) -> usize {
-    h.0.iter().position(|c| c == name).unwrap()
-}
-
 #[test]
 fn a_run_ends_exactly_on_an_end_that_is_not_a_multiple_of_the_step() {
     let (dt, g) = (1e-4, 9.81);
@@ -348,12 +321,12 @@ fn a_run_ends_exactly_on_an_end_that_is_not_a_multiple_of_the_step() {
             serde_json::from_str(&std::fs::read_to_string(out.join("summary.json")).unwrap())
                 .unwrap();
         assert_eq!(json["end_time"].as_f64(), Some(end));
-        let h = histories(&out);
-        let row = h.1.last().unwrap();
+        let h = Histories::read(&out);
+        let row = h.rows.last().unwrap();
         assert_eq!(row[0], end, "last histories row for end {end}");
-        assert_eq!(h.1.len() as u64, steps + 1);
+        assert_eq!(h.rows.len() as u64, steps + 1);
         // The closed form of the leapfrog under constant acceleration.
-        let uz = row[col(&h, "node0_uz")];
+        let uz = row[h.index("node0_uz")];
         let exact = -g * (0.5 * end * end + 0.5 * dt * end);
         assert!(
             (uz - exact).abs() <= 1e-9 * exact.abs(),
@@ -420,21 +393,21 @@ fn a_shortened_last_step_keeps_contact_closed_with_the_impact_force() {
         s.last_dt,
         s.dt
     );
-    let h = histories(&out);
+    let h = Histories::read(&out);
     let _ = std::fs::remove_dir_all(&out);
     let theory = 0.25 * 2400.0 * (30e9f64 / 2400.0).sqrt() * 1.0 / 2.0;
-    let n = h.1.len();
-    for row in [&h.1[n - 2], &h.1[n - 1]] {
+    let n = h.rows.len();
+    for row in [&h.rows[n - 2], &h.rows[n - 1]] {
         // The probe takes node 80, the striker's corner; node 647 is its split twin.
-        let (a, b) = (row[col(&h, "hit_ux")], row[col(&h, "node647_ux")]);
+        let (a, b) = (row[h.index("hit_ux")], row[h.index("node647_ux")]);
         assert!(a > 1e-4, "the striker has moved: {a:e}");
         assert!(
             (a - b).abs() <= 1e-9 * a,
             "t = {}: faces at {a:e} and {b:e}",
             row[0]
         );
-        assert_ne!(row[col(&h, "hit_contact_state")], 3.0, "separated");
-        let f = row[col(&h, "hit_normal_force")];
+        assert_ne!(row[h.index("hit_contact_state")], 3.0, "separated");
+        let f = row[h.index("hit_normal_force")];
         assert!(
             (f / theory - 1.0).abs() < 0.1,
             "t = {}: normal force {f:.4e} N against {theory:.4e} N",

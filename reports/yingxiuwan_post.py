@@ -593,7 +593,9 @@ def render_maps(frames: dict[str, Frame], out: Path, lining: int, inner: int) ->
         _save(fig, out / name)
         plt.close(fig)
         made[f"contact_{when}"] = name
-    return made
+    # Each kind of map at every frame side by side: lining, inner structure, contact.
+    kinds = ["damage_lining_", "damage_inner_", "contact_"]
+    return dict(sorted(made.items(), key=lambda kv: next(i for i, k in enumerate(kinds) if kv[0].startswith(k))))
 
 
 # ------------------------------------------------------------------------------ main

@@ -278,3 +278,36 @@ def test_main_reports_error(tmp_path, capsys):
     (run / "case.pvd").unlink()
     assert yp.main([str(run), "--sets", str(sets), "--out", str(tmp_path / "o"), "--no-maps"]) == 2
     assert "case.pvd: missing" in capsys.readouterr().err
+
+
+def test_report_section_shows_survey_areas_anchors_and_maps(tmp_path):
+    """reports/generate.py's Yingxiuwan section: the survey table, the contact areas, the
+    anchors and the maps (embedded) from post/post.json; without it, a warning."""
+    import generate
+    from test_report import write_inputs
+
+    root = tmp_path / "root"
+    write_inputs(root)
+    run, sets = make_run(tmp_path)
+    y = root / "results/yingxiuwan"
+    y.mkdir(parents=True)
+    (y / "summary.json").write_text(json.dumps({"title": "Yingxiuwan", "nodes": 40, "elements": 5, "end_time": 3.0}))
+    (y / "histories.csv").write_text((run / "histories.csv").read_text())
+    page, md, _ = generate.build(generate.read_inputs(root))
+    assert "No post-processing on record" in page and "No post-processing on record" in md
+    yp.post(run, sets, y / "post")
+    page, md, _ = generate.build(generate.read_inputs(root))
+    assert "No post-processing on record" not in page
+    # arch: no (0.0 %) at 0 s, yes (33.3 %) at 3 s; turbine floor's set is not in the run.
+    assert "| arch | yes: existing cracks propagated, new cracks along and across the axis | yes (damage up to 1.0) | no (0.0 %) | yes (33.3 %) | 0.3 |" in md
+    assert "| turbine floor |" in md and "set not in the frames" in md
+    assert "| lr | 5 → 3 | – → – | 0 → 2 | – → – |" in md
+    assert "| b | 250 | 2 | 200 |" in md
+    assert page.count('src="data:image/png;base64,') >= 6 + 1  # the maps and the damaged-volume plot
+    assert 'alt="contact_3 s"' in page
+    # A map that post.json lists but that is gone, and a post.json of another run, are named.
+    (y / "post/contact_3s.png").unlink()
+    (y / "summary.json").write_text(json.dumps({"title": "Yingxiuwan", "end_time": 60.0}))
+    page, md, _ = generate.build(generate.read_inputs(root))
+    assert "Maps missing" in page and "contact_3s.png" in page
+    assert "is not the run's end" in md

@@ -247,6 +247,12 @@ def read_yingxiuwan_post(d: Path) -> dict[str, Any] | None:
     post = _load_json(path)
     if not isinstance(post, dict) or not isinstance(post.get("survey"), list):
         raise ReportError(f"{path}: expected an object with a 'survey' list (reports/yingxiuwan_post.py)")
+    for i, r in enumerate(post["survey"]):
+        if not isinstance(r, dict) or not all(isinstance(r.get(k), str) for k in ("location", "survey", "paper")):
+            raise ReportError(f"{path}: survey row {i}: expected an object with 'location', 'survey' and 'paper' texts, got {r!r}")
+    for key in ("maps", "interface_areas", "anchors"):
+        if not isinstance(post.get(key) or {}, dict):
+            raise ReportError(f"{path}: '{key}' must be an object, got {type(post[key]).__name__}")
     images, missing = {}, []
     for key, name in (post.get("maps") or {}).items():
         png = d / name
@@ -723,6 +729,13 @@ def yingxiuwan_post_section(rep: Report, post: dict[str, Any] | None, summary: d
         rep.h(f'<p class="warn">The post-processing\'s last frame (t = {esc(num(t1))} s) is not the run\'s end ({esc(num(end))} s): '
               "post.json is from another run.</p>")
         rep.m(f"Warning: the post-processing's last frame (t = {num(t1)} s) is not the run's end ({num(end)} s).\n")
+    dv = post.get("damaged_volume") or {}
+    if dv:
+        line = (f"Concrete damaged volume (histories, integration points): {num(dv.get('before'))} m³ at 0 s (paper: 63.2 m³), "
+                f"growth from {num(dv.get('onset'))} s (paper: 2.6 s), {num(dv.get('end'))} m³ at {num(dv.get('end_time'))} s "
+                "(paper: 460.3 m³ at 60 s).")
+        rep.h(f"<p>{esc(line)}</p>")
+        rep.m(line + "\n")
     thr, shr = post.get("threshold", 0.1), post.get("damaged_share", 0.01)
     rep.h(f"<h3>Damaged locations against the post-earthquake survey</h3><p>Per element set of the generator: an element is damaged "
           f"when max(d<sub>t</sub>, d<sub>c</sub>) of the element reaches {esc(num(thr))}; a location is damaged (yes) when "

@@ -311,3 +311,19 @@ def test_report_section_shows_survey_areas_anchors_and_maps(tmp_path):
     page, md, _ = generate.build(generate.read_inputs(root))
     assert "Maps missing" in page and "contact_3s.png" in page
     assert "is not the run's end" in md
+
+
+def test_report_names_a_broken_post_json(tmp_path):
+    import generate
+    from test_report import write_inputs
+
+    write_inputs(tmp_path)
+    y = tmp_path / "results/yingxiuwan"
+    (y / "post").mkdir(parents=True)
+    (y / "summary.json").write_text(json.dumps({"title": "Yingxiuwan", "end_time": 3.0}))
+    (y / "post/post.json").write_text(json.dumps({"survey": [{"location": "arch"}]}))
+    with pytest.raises(generate.ReportError, match=r"post\.json: survey row 0"):
+        generate.read_inputs(tmp_path)
+    (y / "post/post.json").write_text(json.dumps({"survey": [], "maps": ["a.png"]}))
+    with pytest.raises(generate.ReportError, match=r"post\.json: 'maps' must be an object"):
+        generate.read_inputs(tmp_path)

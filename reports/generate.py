@@ -12,7 +12,8 @@ Reads (paths relative to the repository root, or given on the command line):
   and curves;
 - results/crosscheck/performance.json — the timings of the performance table;
 - benchmarks/history.jsonl — throughput over commits;
-- results/yingxiuwan/ — the Yingxiuwan case's run (summary.json, histories.csv), when
+- results/yingxiuwan/ — the Yingxiuwan case's run (summary.json, histories.csv,
+  checks.json, and post/post.json with its maps from reports/yingxiuwan_post.py), when
   that case exists.
 
 A file or row that cannot be read stops the generator with a message naming the file
@@ -233,7 +234,34 @@ def read_yingxiuwan(root: Path) -> dict[str, Any] | None:
         out["columns"] = cols
     checks = d / "checks.json"
     out["checks"] = _load_json(checks) if checks.exists() else None
+    out["post"] = read_yingxiuwan_post(d / "post")
     return out
+
+
+def read_yingxiuwan_post(d: Path) -> dict[str, Any] | None:
+    """The post-processing of the run (reports/yingxiuwan_post.py): post.json and its maps
+    (PNG, base64 here; a map it lists but that is missing is named in `missing_maps`)."""
+    path = d / "post.json"
+    if not path.exists():
+        return None
+    post = _load_json(path)
+    if not isinstance(post, dict) or not isinstance(post.get("survey"), list):
+        raise ReportError(f"{path}: expected an object with a 'survey' list (reports/yingxiuwan_post.py)")
+    for i, r in enumerate(post["survey"]):
+        if not isinstance(r, dict) or not all(isinstance(r.get(k), str) for k in ("location", "survey", "paper")):
+            raise ReportError(f"{path}: survey row {i}: expected an object with 'location', 'survey' and 'paper' texts, got {r!r}")
+    for key in ("maps", "interface_areas", "anchors"):
+        if not isinstance(post.get(key) or {}, dict):
+            raise ReportError(f"{path}: '{key}' must be an object, got {type(post[key]).__name__}")
+    images, missing = {}, []
+    for key, name in (post.get("maps") or {}).items():
+        png = d / name
+        if png.exists():
+            images[key] = base64.b64encode(png.read_bytes()).decode("ascii")
+        else:
+            missing.append(str(png))
+    post["images"], post["missing_maps"] = images, missing
+    return post
 
 
 # ---------------------------------------------------------------------------- plots
@@ -678,7 +706,97 @@ def yingxiuwan_section(rep: Report, y: dict[str, Any]) -> None:
         ax.legend(fontsize=8)
         rep.h(f'<figure class="wide"><img alt="damaged volume" src="data:image/png;base64,{_png(fig)}"><figcaption>Damaged volume over time '
               "(the CI mesh and a synthetic record: differences from the paper are expected and reported, not tuned)</figcaption></figure>")
+    yingxiuwan_post_section(rep, y.get("post"), s)
     rep.h("</section>")
+
+
+def _yes(flag: Any, part: Any) -> str:
+    return "–" if flag is None else f"{'yes' if flag else 'no'} ({100 * float(part):.1f} %)"
+
+
+def yingxiuwan_post_section(rep: Report, post: dict[str, Any] | None, summary: dict[str, Any]) -> None:
+    """The post-processing of the run (reports/yingxiuwan_post.py): the survey table, the
+    interfaces' contact areas and the anchors' largest force at the first and the last
+    frame, and the maps."""
+    if post is None:
+        rep.h('<p class="warn">No post-processing on record (results/yingxiuwan/post/post.json, reports/yingxiuwan_post.py): '
+              "no survey table, contact areas, anchor forces or maps.</p>")
+        rep.m("No post-processing on record (results/yingxiuwan/post/post.json).\n")
+        return
+    t0, t1 = (post.get("frame_times") or [0.0, summary.get("end_time")])[:2]
+    end = summary.get("end_time")
+    if end is not None and t1 is not None and abs(float(t1) - float(end)) > 1e-9:
+        rep.h(f'<p class="warn">The post-processing\'s last frame (t = {esc(num(t1))} s) is not the run\'s end ({esc(num(end))} s): '
+              "post.json is from another run.</p>")
+        rep.m(f"Warning: the post-processing's last frame (t = {num(t1)} s) is not the run's end ({num(end)} s).\n")
+    dv = post.get("damaged_volume") or {}
+    if dv:
+        line = (f"Concrete damaged volume (histories, integration points): {num(dv.get('before'))} m³ at 0 s (paper: 63.2 m³), "
+                f"growth from {num(dv.get('onset'))} s (paper: 2.6 s), {num(dv.get('end'))} m³ at {num(dv.get('end_time'))} s "
+                "(paper: 460.3 m³ at 60 s).")
+        rep.h(f"<p>{esc(line)}</p>")
+        rep.m(line + "\n")
+    thr, shr = post.get("threshold", 0.1), post.get("damaged_share", 0.01)
+    rep.h(f"<h3>Damaged locations against the post-earthquake survey</h3><p>Per element set of the generator: an element is damaged "
+          f"when max(d<sub>t</sub>, d<sub>c</sub>) of the element reaches {esc(num(thr))}; a location is damaged (yes) when "
+          f"{esc(num(100 * shr))} % of its volume is. The share in brackets is the damaged share of its volume "
+          f"(survey: paper §4.1; paper's computation: §4.6, §5.1).</p>")
+    rows, md = [], []
+    for r in post["survey"]:
+        if r.get("missing"):
+            ours0 = ours1 = "set not in the frames"
+        else:
+            ours0, ours1 = _yes(r.get("damaged_0"), r.get("damaged_share_0")), _yes(r.get("damaged"), r.get("damaged_share_end"))
+        rows.append(f"<tr><td>{esc(r['location'])}</td><td>{esc(r['survey'])}</td><td>{esc(r['paper'])}</td>"
+                    f"<td>{esc(ours0)}</td><td>{esc(ours1)}</td><td>{esc(num(r.get('max_damage_end')))}</td></tr>")
+        md.append(f"| {r['location']} | {r['survey']} | {r['paper']} | {ours0} | {ours1} | {num(r.get('max_damage_end'))} |")
+    rep.h('<div class="scroll"><table class="rows"><thead><tr><th>location</th><th>survey found</th><th>paper shows</th>'
+          f"<th>ours at {esc(num(t0))} s</th><th>ours at {esc(num(t1))} s</th><th>largest damage at {esc(num(t1))} s</th></tr></thead>"
+          f"<tbody>{''.join(rows)}</tbody></table></div>")
+    rep.m(f"### Damaged locations against the survey\n\n| location | survey found | paper shows | ours at {num(t0)} s | ours at {num(t1)} s | largest damage |\n"
+          "|---|---|---|---|---|---|\n" + "\n".join(md) + "\n")
+    areas = post.get("interface_areas") or {}
+    if areas:
+        states = ["bonded", "stick", "sliding", "separated"]
+        rows, md = [], []
+        for iface, a in areas.items():
+            cells = [(a.get(k) or [None, None]) for k in states]
+            rows.append(f"<tr><td>{esc(iface)}</td>" + "".join(f"<td>{esc(num(c[0]))}</td><td>{esc(num(c[1]))}</td>" for c in cells) + "</tr>")
+            md.append(f"| {iface} | " + " | ".join(f"{num(c[0])} → {num(c[1])}" for c in cells) + " |")
+        rep.h(f"<h3>Contact zones (m²) at {esc(num(t0))} s and {esc(num(t1))} s</h3>"
+              '<div class="scroll"><table class="rows"><thead><tr><th rowspan="2">interface</th>'
+              + "".join(f'<th colspan="2">{s}</th>' for s in states) + "</tr><tr>"
+              + f"<th>{esc(num(t0))} s</th><th>{esc(num(t1))} s</th>" * len(states)
+              + f"</tr></thead><tbody>{''.join(rows)}</tbody></table></div>")
+        rep.m(f"### Contact zones (m², {num(t0)} s → {num(t1)} s)\n\n| interface | " + " | ".join(states) + " |\n|---|"
+              + "---|" * len(states) + "\n" + "\n".join(md) + "\n")
+    anchors = post.get("anchors") or {}
+    if anchors:
+        rows = "".join(f"<tr><td>{esc(k)}</td><td>{esc(num(v.get('max')))}</td><td>{esc(num(v.get('time_of_max')))}</td>"
+                       f"<td>{esc(num(v.get('end')))}</td><td>{esc(num(v.get('yielded_segments_max')))}</td></tr>" for k, v in anchors.items())
+        rep.h("<h3>Anchors</h3><div class=\"scroll\"><table class=\"rows\"><thead><tr><th>bolt pattern</th><th>largest axial force (N)</th>"
+              f"<th>at (s)</th><th>largest at the end (N)</th><th>yielded segments (most)</th></tr></thead><tbody>{rows}</tbody></table></div>")
+        rep.m("### Anchors\n\n| bolt pattern | largest axial force (N) | at (s) | at the end (N) |\n|---|---|---|---|\n"
+              + "\n".join(f"| {k} | {num(v.get('max'))} | {num(v.get('time_of_max'))} | {num(v.get('end'))} |" for k, v in anchors.items()) + "\n")
+    sec = post.get("post_seconds") or {}
+    if sec:
+        rep.h(f"<p>Post-processing: {esc(num(sec.get('total')))} s (tables {esc(num(sec.get('tables')))} s).</p>")
+        rep.m(f"Post-processing: {num(sec.get('total'))} s.\n")
+    images = post.get("images") or {}
+    if images:
+        rep.h("<h3>Maps</h3><p>Boundary faces of the lining and of the inner structure coloured by the element damage "
+              "max(d<sub>t</sub>, d<sub>c</sub>) on a fixed 0–1 scale, and the contact state of the concrete's interface faces "
+              "(concrete–rock and lining–inner structure; a face shows the furthest-gone state of its corners), at the first "
+              "and the last frame. Drawn from the VTU by reports/yingxiuwan_post.py.</p><div class=\"plots\">")
+        for key, data in images.items():
+            rep.h(f'<figure><img alt="{esc(key)}" src="data:image/png;base64,{data}"><figcaption>{esc(key.replace("_", " "))}</figcaption></figure>')
+        rep.h("</div>")
+        rep.m("Maps: " + ", ".join(f"{k}" for k in images) + " (in index.html).\n")
+    missing = post.get("missing_maps") or []
+    if missing or not images:
+        what = ", ".join(missing) if missing else "none rendered (run without maps?)"
+        rep.h(f'<p class="warn">Maps missing: {esc(what)}.</p>')
+        rep.m(f"Maps missing: {what}.\n")
 
 
 HTML_TEMPLATE = """<!DOCTYPE html>

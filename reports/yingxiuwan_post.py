@@ -1,33 +1,52 @@
-"""Post-processing of a Yingxiuwan run (docs/yingxiuwan.md, "Outputs and post-processing").
+"""Post-processing of a Yingxiuwan run (issue #10 items 5 and 7; docs/yingxiuwan.md,
+"Outputs and post-processing").
 
 Reads a run directory written by `dcfm run` on a case from `dcfm mesh yingxiuwan`
-(histories.csv, summary.json, static_summary.json, case.pvd with the compact frames of
-the concrete, anchors.pvd) and the element sets the generator wrote beside the case
-(`<case>_sets.json`), and writes to --out:
+(histories.csv, summary.json, static_summary.json, case.pvd and its VTU frames: the whole
+mesh, or the compact frames of `[output.frames]`) and the element sets the generator wrote
+beside the case (`<case>_sets.json`), and writes to --out:
 
-- post.json: the damaged-volume history of the concrete (eq. 27, lining + inner
-  structure) with its value before the earthquake, the onset time, the growth per window
-  of the paper's description and the final value; the survey table (per named element
-  set: damaged volume and share at 0 s and at the end, largest damage, damaged yes/no);
-  the sliding/separation areas of the interfaces at 0 s and at the end, and the share of
-  interface nodes sliding or separated per survey location; the anchors' largest force;
-  the run's cost;
-- maps rendered off-screen with PyVista (damage of the lining and of the inner structure,
-  contact states, at 0 s and at the end) as PNG (PyVista and vtk are optional:
-  `.venv/bin/pip install -r reference/requirements-post.txt`).
+- post.json: the damaged-volume history of the concrete (eq. 27 as the solver sums it in
+  histories.csv, lining + inner structure) with its value before the earthquake, the onset
+  time, the growth per window of the paper's description and the final value; the survey
+  table (per named element set: damaged volume and share at the first and the last frame,
+  largest damage, damaged yes/no); the interfaces' contact-state areas at the first and the
+  last row; the anchors' largest force; the run's cost;
+- maps (PNG, matplotlib, no display needed): the boundary faces of the lining and of the
+  inner structure coloured by the damage max(d_t, d_c) on a fixed 0–1 scale, and the
+  contact states of the concrete's interface faces, at the first and the last frame, each
+  in two views.
 
-    .venv/bin/python reports/yingxiuwan_post.py RUN_DIR --sets CASE_sets.json --out DIR
+Numbers from the frames (the survey table) use the elements' volumes (2×2×2 Gauss
+quadrature of the reference hex8, exact for a trilinear element) and their cell damage (the
+element's mean over its integration points): an element counts as damaged when
+max(d_t, d_c) reaches the case's threshold (0.1). The histories' damaged volume
+(`damaged_volume = "point"`) counts integration points instead, so a set's damaged volume
+here can differ from the histories' region totals.
+
+The maps are drawn with matplotlib from the VTU directly, not with PyVista/vtk: the vtk
+wheel (112 MB, 425 MB installed) links the system's libX11/libXrender and renders
+off-screen only through the system's EGL or OSMesa libraries, which a machine with nothing
+but pip does not have (docs/yingxiuwan.md).
+
+    .venv/bin/python reports/yingxiuwan_post.py RUN_DIR --sets CASE_sets.json --out DIR [--no-maps]
 """
 
 from __future__ import annotations
 
 import argparse
+import base64
+import binascii
 import csv
 import json
-import math
+import os
 import re
 import sys
+import tempfile
+import time
 import xml.etree.ElementTree as ET
+import zlib
+from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
@@ -48,14 +67,215 @@ SURVEY = [
     ("crane-beam corbels", "crane_beam_corbels", "not reported", "yes, small damage"),
 ]
 
-# A location counts as damaged when this share of its volume reached the damage threshold.
+# An element counts as damaged when max(d_t, d_c) reaches this (the case's
+# `[output] damage_threshold`, docs/plastic_damage.md §5).
+DAMAGE_THRESHOLD = 0.1
+# A location counts as damaged when this share of its volume is damaged (one element in a
+# hundred: a crack, not a single integration point's round-off).
 DAMAGED_SHARE = 0.01
 
 CONTACT_STATES = {0: "bonded", 1: "stick", 2: "sliding", 3: "separated"}
+# The column names of histories.csv for the states (area_<state>_<interface>).
+AREA_STATES = {"bonded": "bonded", "stick": "stick", "slide": "sliding", "separated": "separated", "surface": "point-to-surface"}
 
 
 class PostError(Exception):
     """A run directory or file that cannot be read (named in the message)."""
+
+
+# ------------------------------------------------------------------------------- VTU
+
+
+@dataclass
+class Frame:
+    """One VTU frame: reference coordinates, hex8 connectivity, point and cell fields
+    (each of shape (n, components)), the region names of the field data."""
+
+    path: Path
+    points: np.ndarray
+    cells: np.ndarray
+    point_data: dict[str, np.ndarray] = field(default_factory=dict)
+    cell_data: dict[str, np.ndarray] = field(default_factory=dict)
+    region_names: list[str] = field(default_factory=list)
+
+    def cell(self, name: str) -> np.ndarray:
+        """A one-component cell field as a flat array (its absence is an error naming the file)."""
+        if name not in self.cell_data:
+            raise PostError(f"{self.path}: no cell field '{name}' (has {sorted(self.cell_data)})")
+        return self.cell_data[name][:, 0]
+
+    def element_ids(self) -> np.ndarray:
+        """The element number of every cell: the compact frames' `element_id` field, the
+        cell index in a frame of the whole mesh."""
+        if "element_id" in self.cell_data:
+            return self.cell_data["element_id"][:, 0].astype(np.int64)
+        return np.arange(len(self.cells), dtype=np.int64)
+
+
+_TYPES = {"Float64": "<f8", "Float32": "<f4", "Int64": "<i8", "Int32": "<i4", "UInt8": "u1", "UInt64": "<u8", "Int8": "i1"}
+
+
+def read_vtu(path: Path) -> Frame:
+    """A VTK XML UnstructuredGrid of hex8 cells as dcfm writes it (docs/outputs.md):
+    appended base64 (one stream per array: a UInt64 byte count, then the values), raw
+    appended (plain or zlib-compressed blocks, the compact frames) or inline ASCII arrays."""
+    try:
+        raw = path.read_bytes()
+    except OSError as e:
+        raise PostError(f"{path}: cannot read: {e}") from e
+    marker = raw.find(b"<AppendedData")
+    head = raw if marker < 0 else raw[:marker]
+    try:
+        root = ET.fromstring(_close_open_tags(head.decode("utf-8")))
+    except (ET.ParseError, UnicodeDecodeError) as e:
+        raise PostError(f"{path}: unreadable XML header: {e}") from e
+    if root.tag != "VTKFile" or root.get("type") != "UnstructuredGrid":
+        raise PostError(f"{path}: not a VTK UnstructuredGrid file (root <{root.tag} type={root.get('type')!r}>)")
+    if root.get("byte_order", "LittleEndian") != "LittleEndian":
+        raise PostError(f"{path}: byte_order {root.get('byte_order')!r}, expected LittleEndian")
+    if root.get("header_type", "UInt32") != "UInt64" and marker >= 0:
+        raise PostError(f"{path}: header_type {root.get('header_type')!r}, expected UInt64 (dcfm's)")
+    compressed = root.get("compressor") is not None
+    start, encoding = -1, None
+    if marker >= 0:
+        tag_end = raw.index(b">", marker)
+        encoding = "base64" if b'encoding="base64"' in raw[marker:tag_end] else "raw"
+        start = raw.index(b"_", tag_end) + 1
+
+    def values(arr: ET.Element, where: str) -> np.ndarray:
+        name = arr.get("Name")
+        dtype = _TYPES.get(arr.get("type", ""))
+        if dtype is None:
+            raise PostError(f"{path}: {where} array '{name}': unsupported type {arr.get('type')!r}")
+        ncomp = int(arr.get("NumberOfComponents", "1"))
+        fmt = arr.get("format")
+        try:
+            if fmt == "ascii":
+                data = np.array((arr.text or "").split(), dtype=dtype)
+            elif fmt == "appended" and start >= 0:
+                off = start + int(arr.get("offset", "0"))
+                if encoding == "base64":
+                    nbytes = int(np.frombuffer(base64.b64decode(raw[off : off + 12])[:8], "<u8")[0])
+                    length = 4 * ((8 + nbytes + 2) // 3)
+                    payload = base64.b64decode(raw[off : off + length])[8 : 8 + nbytes]
+                elif compressed:
+                    nblocks = int(np.frombuffer(raw, "<u8", 1, off)[0])
+                    sizes = np.frombuffer(raw, "<u8", nblocks, off + 24)
+                    pos = off + 24 + 8 * nblocks
+                    blocks = []
+                    for size in sizes:
+                        blocks.append(zlib.decompress(raw[pos : pos + int(size)]))
+                        pos += int(size)
+                    payload = b"".join(blocks)
+                else:
+                    nbytes = int(np.frombuffer(raw, "<u8", 1, off)[0])
+                    payload = raw[off + 8 : off + 8 + nbytes]
+                data = np.frombuffer(payload, dtype)
+            else:
+                raise PostError(f"{path}: {where} array '{name}': format {fmt!r} (expected ascii or appended)")
+        except (ValueError, zlib.error, binascii.Error, IndexError) as e:
+            raise PostError(f"{path}: {where} array '{name}' cannot be decoded: {e}") from e
+        if data.size % ncomp:
+            raise PostError(f"{path}: {where} array '{name}': {data.size} values for {ncomp} components")
+        return data.reshape(-1, ncomp)
+
+    piece = root.find("UnstructuredGrid/Piece")
+    if piece is None:
+        raise PostError(f"{path}: no <UnstructuredGrid><Piece>")
+    n_points, n_cells = int(piece.get("NumberOfPoints", "-1")), int(piece.get("NumberOfCells", "-1"))
+
+    def arrays(section: str, expected: int) -> dict[str, np.ndarray]:
+        out = {}
+        for arr in piece.findall(f"{section}/DataArray"):
+            a = values(arr, section)
+            if len(a) != expected:
+                raise PostError(f"{path}: {section} array '{arr.get('Name')}': {len(a)} tuples, expected {expected}")
+            out[arr.get("Name", "")] = a
+        return out
+
+    pts = arrays("Points", n_points)
+    cells = {a.get("Name"): values(a, "Cells") for a in piece.findall("Cells/DataArray")}
+    if len(pts) != 1:
+        raise PostError(f"{path}: expected one <Points> array, found {len(pts)}")
+    points = next(iter(pts.values()))
+    if points.shape[1] != 3:
+        raise PostError(f"{path}: points have {points.shape[1]} components, expected 3")
+    for k in ("connectivity", "offsets", "types"):
+        if k not in cells:
+            raise PostError(f"{path}: <Cells> has no '{k}' array")
+    types = cells["types"][:, 0]
+    if len(types) != n_cells or np.any(types != 12):
+        bad = sorted(set(types.tolist()) - {12})
+        raise PostError(f"{path}: cells must be {n_cells} hex8 (VTK type 12), found {len(types)} with types {bad or [12]}")
+    offsets = cells["offsets"][:, 0].astype(np.int64)
+    if not np.array_equal(offsets, 8 * np.arange(1, n_cells + 1)):
+        raise PostError(f"{path}: cell offsets are not those of hex8 cells (8, 16, …)")
+    conn = cells["connectivity"][:, 0].astype(np.int64).reshape(n_cells, 8)
+    if conn.size and (conn.min() < 0 or conn.max() >= n_points):
+        raise PostError(f"{path}: connectivity refers to point {int(conn.max())} of {n_points}")
+    names: list[str] = []
+    for arr in root.iter("Array"):
+        if arr.get("Name") == "region_names":
+            codes = [int(c) for c in (arr.text or "").split()]
+            names = bytes(codes).decode("utf-8").split("\0")[:-1]
+    return Frame(path, points.astype(float), conn, arrays("PointData", n_points), arrays("CellData", n_cells), names)
+
+
+def _close_open_tags(text: str) -> str:
+    """Close the elements still open where the appended data begins."""
+    stack: list[str] = []
+    for piece in text.split("<")[1:]:
+        if piece.startswith("?") or piece.startswith("!"):
+            continue
+        tag = piece.split(">", 1)[0]
+        if tag.startswith("/"):
+            if stack:
+                stack.pop()
+        elif not tag.rstrip().endswith("/"):
+            stack.append(tag.split()[0])
+    return text + "".join(f"</{t}>" for t in reversed(stack))
+
+
+def read_pvd(path: Path) -> list[tuple[float, Path]]:
+    """(time, file) of every frame of a PVD collection, in time order."""
+    if not path.exists():
+        raise PostError(f"{path}: missing (was the case run?)")
+    try:
+        root = ET.parse(path).getroot()
+    except ET.ParseError as e:
+        raise PostError(f"{path}: unreadable XML: {e}") from e
+    out = []
+    for ds in root.iter("DataSet"):
+        try:
+            out.append((float(ds.attrib["timestep"]), path.parent / ds.attrib["file"]))
+        except (KeyError, ValueError) as e:
+            raise PostError(f"{path}: DataSet {ds.attrib}: needs a numeric timestep and a file ({e})") from e
+    if not out:
+        raise PostError(f"{path}: no frame")
+    return sorted(out, key=lambda x: x[0])
+
+
+def hex8_volumes(points: np.ndarray, cells: np.ndarray) -> np.ndarray:
+    """Volume of every hex8 cell: 2×2×2 Gauss quadrature of det J (exact for trilinear
+    cells, whose det J has degree ≤ 2 in each coordinate). VTK node order."""
+    g = 1.0 / np.sqrt(3.0)
+    corners = np.array([[-1, -1, -1], [1, -1, -1], [1, 1, -1], [-1, 1, -1],
+                        [-1, -1, 1], [1, -1, 1], [1, 1, 1], [-1, 1, 1]], dtype=float)
+    x = points[cells]  # (m, 8, 3)
+    vol = np.zeros(len(cells))
+    for q in corners * g:
+        # dN/dξ of the 8 shape functions N_a = (1 + ξ ξ_a)(1 + η η_a)(1 + ζ ζ_a)/8.
+        f = 1.0 + corners * q  # (8, 3)
+        dn = np.empty((8, 3))
+        dn[:, 0] = corners[:, 0] * f[:, 1] * f[:, 2] / 8
+        dn[:, 1] = corners[:, 1] * f[:, 0] * f[:, 2] / 8
+        dn[:, 2] = corners[:, 2] * f[:, 0] * f[:, 1] / 8
+        jac = np.einsum("mai,aj->mij", x, dn)
+        vol += np.linalg.det(jac)
+    return vol
+
+
+# ------------------------------------------------------------------------ histories
 
 
 def read_histories(path: Path, wanted: list[str]) -> dict[str, np.ndarray]:
@@ -64,112 +284,180 @@ def read_histories(path: Path, wanted: list[str]) -> dict[str, np.ndarray]:
         raise PostError(f"{path}: missing (was the case run?)")
     with path.open(encoding="utf-8") as f:
         reader = csv.reader(f)
-        header = next(reader)
+        try:
+            header = next(reader)
+        except StopIteration:
+            raise PostError(f"{path}: empty (no header line)") from None
         keep = [i for i, h in enumerate(header) if any(re.fullmatch(w, h) for w in wanted)]
         rows: list[list[float]] = []
         for n, row in enumerate(reader, start=2):
             if len(row) != len(header):
                 raise PostError(f"{path}: line {n}: {len(row)} values for {len(header)} columns")
-            rows.append([float(row[i]) for i in keep])
+            try:
+                rows.append([float(row[i]) for i in keep])
+            except ValueError as e:
+                raise PostError(f"{path}: line {n}: {e}") from e
+    if not rows:
+        raise PostError(f"{path}: no data row")
+    if "time" not in header:
+        raise PostError(f"{path}: no 'time' column")
     data = np.array(rows, dtype=float).reshape(-1, len(keep))
     return {header[i]: data[:, k] for k, i in enumerate(keep)}
 
 
-def damaged_volume_history(cols: dict[str, np.ndarray]) -> dict[str, Any]:
-    """Eq. (27) over the concrete (lining + inner structure), its key figures."""
+def damaged_volume_history(cols: dict[str, np.ndarray], path: Path) -> dict[str, Any]:
+    """Eq. (27) over the concrete (lining + inner structure) as the solver sums it, with
+    its key figures against the paper's description (§4.6.1)."""
     t = cols["time"]
+    parts = [k for k in cols if re.fullmatch(r"damaged_volume_total_(lining|inner)", k)]
+    if not parts:
+        raise PostError(f"{path}: no damaged_volume_total_lining / _inner column")
     v = np.zeros_like(t)
-    for k, c in cols.items():
-        if re.fullmatch(r"damaged_volume_total_(lining|inner)", k):
-            v = v + c
+    for k in parts:
+        v = v + cols[k]
     v0 = float(v[0])
     # Onset: the first time the damaged volume exceeds its pre-earthquake value by 0.1 m³
     # (a few integration points of the full mesh).
     grown = np.nonzero(v > v0 + 0.1)[0]
     onset = float(t[grown[0]]) if len(grown) else None
     windows = []
-    edges = [0.0, 2.6, 20.0, 30.0, 40.0, float(t[-1])]
+    edges = [0.0, 2.6, 20.0, 30.0, 40.0, 60.0]
     for a, b in zip(edges[:-1], edges[1:]):
-        if b <= a or a > t[-1]:
-            continue
-        va, vb = np.interp([a, min(b, t[-1])], t, v)
-        windows.append({"from": a, "to": float(min(b, t[-1])), "growth": float(vb - va),
-                        "rate": float((vb - va) / max(min(b, t[-1]) - a, 1e-12))})
-    # A thinned copy for plots (≤ 2000 points).
+        if a >= t[-1]:
+            break
+        b = min(b, float(t[-1]))
+        va, vb = np.interp([a, b], t, v)
+        windows.append({"from": a, "to": b, "growth": float(vb - va), "rate": float((vb - va) / (b - a))})
+    # A thinned copy for plots (≤ 2001 points, the last row kept).
     step = max(1, len(t) // 2000)
+    idx = list(range(0, len(t), step))
+    if idx[-1] != len(t) - 1:
+        idx.append(len(t) - 1)
     return {
+        "columns": parts,
         "before": v0,
         "end": float(v[-1]),
         "end_time": float(t[-1]),
         "onset": onset,
         "windows": windows,
-        "time": t[::step].tolist() + ([float(t[-1])] if (len(t) - 1) % step else []),
-        "volume": v[::step].tolist() + ([float(v[-1])] if (len(t) - 1) % step else []),
+        "time": t[idx].tolist(),
+        "volume": v[idx].tolist(),
         "paper": PAPER,
     }
 
 
-def read_pvd(path: Path) -> list[tuple[float, Path]]:
-    if not path.exists():
-        raise PostError(f"{path}: missing")
-    root = ET.parse(path).getroot()
-    out = []
-    for ds in root.iter("DataSet"):
-        out.append((float(ds.attrib["timestep"]), path.parent / ds.attrib["file"]))
-    if not out:
-        raise PostError(f"{path}: no frame")
+def interface_areas(cols: dict[str, np.ndarray]) -> dict[str, dict[str, list[float]]]:
+    """Per interface and contact state: [area at the first row, at the last row] (m²)."""
+    out: dict[str, dict[str, list[float]]] = {}
+    for k, v in cols.items():
+        m = re.fullmatch(r"area_(bonded|stick|slide|separated|surface)_(.+)", k)
+        if m:
+            out.setdefault(m.group(2), {})[AREA_STATES[m.group(1)]] = [float(v[0]), float(v[-1])]
     return out
 
 
-def frame_table(frame, sets: dict[str, list[int]], threshold: float) -> dict[str, dict[str, float]]:
-    """Per element set: volume, damaged volume (elements whose volume-averaged D_t or D_c
-    reaches `threshold`), largest damage, and the share of its interface nodes sliding or
-    separated."""
-    ids = np.asarray(frame.cell_data["element_id"]).astype(np.int64)
-    vol = np.asarray(frame.compute_cell_sizes(length=False, area=False, volume=True).cell_data["Volume"])
-    dmax = np.maximum(np.asarray(frame.cell_data["damage_tension"]), np.asarray(frame.cell_data["damage_compression"]))
-    state = np.asarray(frame.point_data["contact_state"]) if "contact_state" in frame.point_data else None
-    where = {int(e): k for k, e in enumerate(ids)}
-    conn = frame.cells_dict[12] if hasattr(frame, "cells_dict") else None
+def anchor_forces(cols: dict[str, np.ndarray]) -> dict[str, dict[str, float]]:
+    """Per bolt pattern: the largest axial force over the run (N), at the end, and the
+    largest number of yielded bar segments."""
+    out: dict[str, dict[str, float]] = {}
+    for k, v in cols.items():
+        m = re.fullmatch(r"anchor_(.+)_max_force", k)
+        if m:
+            row = {"max": float(np.max(v)), "time_of_max": float(cols["time"][int(np.argmax(v))]), "end": float(v[-1])}
+            y = cols.get(f"anchor_{m.group(1)}_yielded_segments")
+            if y is not None:
+                row["yielded_segments_max"] = float(np.max(y))
+            out[m.group(1)] = row
+    return out
+
+
+# ---------------------------------------------------------------------- survey table
+
+
+def read_sets(path: Path) -> tuple[dict[str, np.ndarray], list[str]]:
+    """The element sets and region names of `<case>_sets.json` (solver/app/src/mesh_cmd.rs)."""
+    if not path.exists():
+        raise PostError(f"{path}: missing (written by `dcfm mesh yingxiuwan` beside the case)")
+    try:
+        doc = json.loads(path.read_text(encoding="utf-8"))
+    except (json.JSONDecodeError, UnicodeDecodeError) as e:
+        raise PostError(f"{path}: not JSON: {e}") from e
+    if not isinstance(doc, dict) or not isinstance(doc.get("element_sets"), dict) or not isinstance(doc.get("regions"), list):
+        raise PostError(f"{path}: expected an object with 'element_sets' (name → element numbers) and 'regions' (names)")
+    sets = {}
+    for name, elems in doc["element_sets"].items():
+        if not isinstance(elems, list) or not all(isinstance(e, int) and e >= 0 for e in elems):
+            raise PostError(f"{path}: element set '{name}': expected a list of element numbers ≥ 0")
+        sets[name] = np.asarray(elems, dtype=np.int64)
+    return sets, [str(r) for r in doc["regions"]]
+
+
+def frame_table(frame: Frame, sets: dict[str, np.ndarray], sets_path: Path, threshold: float = DAMAGE_THRESHOLD) -> dict[str, dict[str, float]]:
+    """Per element set: volume, damaged volume (elements whose cell max(d_t, d_c) reaches
+    `threshold`), its share, the largest damage, and the share of the set's interface
+    nodes sliding or separated. Inactive cells (region −1) and elements not in the frame
+    (compact frames) are left out."""
+    ids = frame.element_ids()
+    if "element_id" not in frame.cell_data:
+        for name, elems in sets.items():
+            if len(elems) and elems.max() >= len(ids):
+                raise PostError(f"{sets_path}: element set '{name}' has element {int(elems.max())}, "
+                                f"but {frame.path} has {len(ids)} cells (a sets file of another mesh?)")
+    where = np.full(int(max(ids.max(initial=-1), max((int(e.max(initial=-1)) for e in sets.values()), default=-1))) + 1, -1, np.int64)
+    where[ids] = np.arange(len(ids))
+    vol = hex8_volumes(frame.points, frame.cells)
+    dmax = np.maximum(frame.cell("damage_tension"), frame.cell("damage_compression"))
+    active = frame.cell("region") >= 0 if "region" in frame.cell_data else np.ones(len(ids), bool)
+    state = frame.point_data["contact_state"][:, 0] if "contact_state" in frame.point_data else None
     out: dict[str, dict[str, float]] = {}
     for name, elems in sets.items():
-        idx = np.array([where[e] for e in elems if e in where], dtype=np.int64)
+        idx = where[elems]
+        idx = idx[idx >= 0]
+        idx = idx[active[idx]]
         if len(idx) == 0:
             continue
         v = vol[idx]
         damaged = dmax[idx] >= threshold
-        row = {
+        row: dict[str, float] = {
             "elements": int(len(idx)),
             "volume": float(v.sum()),
+            "damaged_elements": int(damaged.sum()),
             "damaged_volume": float(v[damaged].sum()),
             "damaged_share": float(v[damaged].sum() / v.sum()),
             "max_damage": float(dmax[idx].max()),
         }
-        if state is not None and conn is not None:
-            nodes = np.unique(conn[idx].ravel())
-            s = state[nodes] % 10
+        if state is not None:
+            s = state[np.unique(frame.cells[idx].ravel())]
             on = s >= 0
+            s = np.mod(s[on], 10)
             row["interface_nodes"] = int(on.sum())
-            row["sliding_or_separated_share"] = float(((s == 2) | (s == 3)).sum() / max(on.sum(), 1))
+            row["sliding_or_separated_share"] = float(((s == 2) | (s == 3)).sum() / on.sum()) if on.any() else None
         out[name] = row
     return out
 
 
 def survey_table(first: dict, last: dict) -> list[dict[str, Any]]:
+    """The survey's locations (§4.1) against the paper (§4.6, §5.1) and this run: damaged
+    yes/no at the first and the last frame (share of the volume ≥ DAMAGED_SHARE)."""
     rows = []
     for location, key, survey, paper in SURVEY:
         a, b = first.get(key), last.get(key)
         if a is None or b is None:
+            rows.append({"location": location, "set": key, "survey": survey, "paper": paper, "missing": True})
             continue
         rows.append({
             "location": location,
             "set": key,
             "survey": survey,
             "paper": paper,
+            "elements": b["elements"],
+            "volume": b["volume"],
             "damaged_volume_0": a["damaged_volume"],
             "damaged_volume_end": b["damaged_volume"],
+            "damaged_share_0": a["damaged_share"],
             "damaged_share_end": b["damaged_share"],
             "max_damage_end": b["max_damage"],
+            "damaged_0": a["damaged_share"] >= DAMAGED_SHARE,
             "damaged": b["damaged_share"] >= DAMAGED_SHARE,
             "grew_during_earthquake": b["damaged_volume"] > a["damaged_volume"] + 1e-9,
             "sliding_or_separated_share_0": a.get("sliding_or_separated_share"),
@@ -178,115 +466,219 @@ def survey_table(first: dict, last: dict) -> list[dict[str, Any]]:
     return rows
 
 
-def render_maps(frames: dict[str, Any], out: Path, lining: int, inner: int) -> dict[str, str]:
-    """Damage of the lining and of the inner structure and the contact states, at 0 s
-    and at the end, off-screen (PyVista)."""
-    import pyvista as pv
+# ------------------------------------------------------------------------------ maps
 
-    pv.OFF_SCREEN = True
+# Faces of a hex8 in VTK node order.
+HEX_FACES = np.array([[0, 3, 2, 1], [4, 5, 6, 7], [0, 1, 5, 4], [1, 2, 6, 5], [2, 3, 7, 6], [3, 0, 4, 7]])
+CONTACT_COLOURS = ["#2b83ba", "#abdda4", "#fdae61", "#d7191c"]
+
+
+def boundary_faces(cells: np.ndarray, points: np.ndarray) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """The faces of `cells` that no other of them shares: (node numbers (f, 4), cell index
+    (f,), outward unit normal (f, 3))."""
+    faces = cells[:, HEX_FACES].reshape(-1, 4)
+    owner = np.repeat(np.arange(len(cells)), 6)
+    key = np.sort(faces, axis=1)
+    _, inv, count = np.unique(key, axis=0, return_inverse=True, return_counts=True)
+    once = count[inv.ravel()] == 1
+    faces, owner = faces[once], owner[once]
+    x = points[faces]
+    n = np.cross(x[:, 2] - x[:, 0], x[:, 3] - x[:, 1])
+    n /= np.maximum(np.linalg.norm(n, axis=1, keepdims=True), 1e-300)
+    out = x.mean(axis=1) - points[cells[owner]].mean(axis=1)
+    n[np.einsum("ij,ij->i", n, out) < 0] *= -1.0
+    return faces, owner, n
+
+
+def _view(elev: float, azim: float) -> tuple[np.ndarray, np.ndarray, np.ndarray]:
+    """Orthographic view: towards-the-viewer direction, screen right and up."""
+    e, a = np.radians(elev), np.radians(azim)
+    d = np.array([np.cos(e) * np.cos(a), np.cos(e) * np.sin(a), np.sin(e)])
+    r = np.array([-np.sin(a), np.cos(a), 0.0])
+    return d, r, np.cross(d, r)
+
+
+def _draw(ax, points: np.ndarray, faces: np.ndarray, normals: np.ndarray, colours: np.ndarray,
+          elev: float, azim: float, context: tuple[np.ndarray, np.ndarray] | None = None) -> None:
+    """Painter's algorithm with back faces culled: the faces facing the viewer, far ones
+    first; `context` (faces, normals) drawn in light grey under the same sort."""
+    from matplotlib.collections import PolyCollection
+
+    d, r, u = _view(elev, azim)
+    allf, alln, allc = faces, normals, colours
+    if context is not None and len(context[0]):
+        grey = np.tile(np.array([[0.86, 0.86, 0.86, 1.0]]), (len(context[0]), 1))
+        allf, alln, allc = np.vstack([faces, context[0]]), np.vstack([normals, context[1]]), np.vstack([colours, grey])
+    front = alln @ d > 1e-9
+    f, c = allf[front], allc[front]
+    x = points[f]
+    depth = (x @ d).mean(axis=1)
+    order = np.argsort(depth, kind="stable")
+    xy = np.stack([x @ r, x @ u], axis=-1)[order]
+    ax.add_collection(PolyCollection(xy, facecolors=c[order], edgecolors=(0.15, 0.15, 0.15, 0.35), linewidths=0.25))
+    proj = np.stack([points[np.unique(allf)] @ r, points[np.unique(allf)] @ u], axis=-1)
+    lo, hi = proj.min(axis=0), proj.max(axis=0)
+    pad = 0.03 * (hi - lo).max()
+    ax.set_xlim(lo[0] - pad, hi[0] + pad)
+    ax.set_ylim(lo[1] - pad, hi[1] + pad)
+    ax.set_aspect("equal")
+    ax.set_axis_off()
+
+
+# Views (elevation, azimuth in degrees; x across the cavern, y along its axis, z up).
+VIEWS = {
+    "lining": [("from upstream, above (rock side)", 30.0, -140.0), ("from below (cavern side)", -40.0, -130.0)],
+    "inner": [("from upstream, above", 35.0, -140.0), ("from downstream, above", 35.0, 40.0)],
+    "contact": [("from upstream, above", 30.0, -140.0), ("from below", -35.0, -130.0)],
+}
+
+
+def _save(fig, path: Path) -> None:
+    fig.savefig(path, dpi=100, metadata={"Software": None})
+
+
+def render_maps(frames: dict[str, Frame], out: Path, lining: int, inner: int) -> dict[str, str]:
+    """Damage of the lining and of the inner structure (boundary faces, cell
+    max(d_t, d_c), fixed scale 0–1) and the contact states of the concrete's interface
+    faces, at each of `frames` (label → frame), as PNG files in `out`: label → file name."""
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    from matplotlib import colormaps
+    from matplotlib.colors import BoundaryNorm, ListedColormap, Normalize
+
     made: dict[str, str] = {}
+    cmap, norm = colormaps["viridis"], Normalize(0.0, 1.0)
     for when, frame in frames.items():
-        region = np.asarray(frame.cell_data["region"]).astype(int)
-        frame.cell_data["damage_max"] = np.maximum(frame.cell_data["damage_tension"], frame.cell_data["damage_compression"])
-        for what, r, view in (("lining", lining, "arch"), ("inner", inner, "inner")):
-            part = frame.extract_cells(np.nonzero(region == r)[0])
-            p = pv.Plotter(off_screen=True, window_size=(1100, 720))
-            p.set_background("white")
-            p.add_mesh(part, scalars="damage_max", cmap="jet", clim=(0.0, 1.0), show_edges=False,
-                       scalar_bar_args={"title": "damage max(Dt, Dc)", "color": "black"})
-            p.add_text(f"{what}, t = {when}", color="black", font_size=12)
-            _camera(p, part, view)
-            name = f"damage_{what}_{when.replace(' ', '')}.png"
-            p.screenshot(str(out / name))
-            p.close()
+        tag = when.replace(" ", "")
+        region = frame.cell("region").astype(int)
+        dmax = np.maximum(frame.cell("damage_tension"), frame.cell("damage_compression"))
+        for what, r in (("lining", lining), ("inner", inner)):
+            sel = np.nonzero(region == r)[0]
+            if len(sel) == 0:
+                continue
+            faces, owner, normals = boundary_faces(frame.cells[sel], frame.points)
+            colours = cmap(norm(dmax[sel][owner]))
+            fig, axes = plt.subplots(1, 2, figsize=(11.0, 4.6), layout="constrained")
+            for ax, (title, elev, azim) in zip(axes, VIEWS[what]):
+                _draw(ax, frame.points, faces, normals, colours, elev, azim)
+                ax.set_title(title, fontsize=9)
+            fig.colorbar(plt.cm.ScalarMappable(norm=norm, cmap=cmap), ax=axes, shrink=0.8, label="damage max(d_t, d_c)")
+            fig.suptitle(f"{'lining' if what == 'lining' else 'inner structure'}: damage at t = {when}", fontsize=11)
+            name = f"damage_{what}_{tag}.png"
+            _save(fig, out / name)
+            plt.close(fig)
             made[f"damage_{what}_{when}"] = name
-        if "contact_state" in frame.point_data:
-            surf = frame.extract_surface()
-            s = np.asarray(surf.point_data["contact_state"])
-            surf.point_data["contact"] = np.where(s < 0, np.nan, s % 10)
-            on = surf.threshold(-0.5, scalars="contact", preference="point", all_scalars=True)
-            p = pv.Plotter(off_screen=True, window_size=(1100, 720))
-            p.set_background("white")
-            p.add_mesh(surf, color="lightgrey", opacity=0.25)
-            if on.n_cells:
-                p.add_mesh(on, scalars="contact", cmap=["#2b83ba", "#abdda4", "#fdae61", "#d7191c"],
-                           clim=(-0.5, 3.5), n_colors=4,
-                           scalar_bar_args={"title": "0 bonded 1 stick 2 sliding 3 separated", "color": "black"})
-            p.add_text(f"interface states, t = {when}", color="black", font_size=12)
-            _camera(p, surf, "arch")
-            name = f"contact_{when.replace(' ', '')}.png"
-            p.screenshot(str(out / name))
-            p.close()
-            made[f"contact_{when}"] = name
-    return made
+        if "contact_state" not in frame.point_data:
+            continue
+        state = frame.point_data["contact_state"][:, 0]
+        sel = np.nonzero((region == lining) | (region == inner))[0]
+        faces, owner, normals = boundary_faces(frame.cells[sel], frame.points)
+        s = state[faces]
+        on = np.all(s >= 0, axis=1)
+        # A face shows the furthest-gone state of its corners (bonded < stick < sliding <
+        # separated), point-to-surface contact (+10) as its pair state.
+        fs = np.mod(s[on], 10).max(axis=1).astype(int)
+        ccmap = ListedColormap(CONTACT_COLOURS)
+        colours = ccmap(fs)
+        fig, axes = plt.subplots(1, 2, figsize=(11.0, 4.6), layout="constrained")
+        for ax, (title, elev, azim) in zip(axes, VIEWS["contact"]):
+            _draw(ax, frame.points, faces[on], normals[on], colours, elev, azim, context=(faces[~on], normals[~on]))
+            ax.set_title(title, fontsize=9)
+        cb = fig.colorbar(plt.cm.ScalarMappable(norm=BoundaryNorm(np.arange(-0.5, 4.5), 4), cmap=ccmap), ax=axes, shrink=0.8, ticks=range(4))
+        cb.ax.set_yticklabels([CONTACT_STATES[i] for i in range(4)])
+        fig.suptitle(f"concrete interface faces (lining, inner structure): contact state at t = {when}", fontsize=11)
+        name = f"contact_{tag}.png"
+        _save(fig, out / name)
+        plt.close(fig)
+        made[f"contact_{when}"] = name
+    # Each kind of map at every frame side by side: lining, inner structure, contact.
+    kinds = ["damage_lining_", "damage_inner_", "contact_"]
+    return dict(sorted(made.items(), key=lambda kv: next(i for i, k in enumerate(kinds) if kv[0].startswith(k))))
 
 
-def _camera(p, mesh, view: str) -> None:
-    b = mesh.bounds
-    c = [(b[0] + b[1]) / 2, (b[2] + b[3]) / 2, (b[4] + b[5]) / 2]
-    size = max(b[1] - b[0], b[3] - b[2], b[5] - b[4])
-    if view == "arch":
-        # From upstream, above and along the axis: the arch and the upstream sidewall.
-        p.camera_position = [(c[0] - 1.3 * size, c[1] - 0.9 * size, c[2] + 0.9 * size), c, (0, 0, 1)]
-    else:
-        p.camera_position = [(c[0] - 1.1 * size, c[1] - 0.8 * size, c[2] + 1.2 * size), c, (0, 0, 1)]
+# ------------------------------------------------------------------------------ main
+
+
+def _load_json(path: Path) -> Any:
+    try:
+        return json.loads(path.read_text(encoding="utf-8"))
+    except (OSError, json.JSONDecodeError, UnicodeDecodeError) as e:
+        raise PostError(f"{path}: {e}") from e
+
+
+def _label(t: float) -> str:
+    return f"{t:g} s"
 
 
 def post(run: Path, sets_path: Path, out: Path, maps: bool = True) -> dict[str, Any]:
+    """Everything of the module docstring; writes out/post.json (and the maps) and returns it."""
+    t_start = time.perf_counter()
     out.mkdir(parents=True, exist_ok=True)
-    summary = json.loads((run / "summary.json").read_text()) if (run / "summary.json").exists() else None
-    static = json.loads((run / "static_summary.json").read_text()) if (run / "static_summary.json").exists() else None
-    sets_doc = json.loads(sets_path.read_text())
-    sets = sets_doc["element_sets"]
-    regions = sets_doc["regions"]
-    cols = read_histories(run / "histories.csv", [r"time", r"damaged_volume_total_.*", r"area_.*", r"anchor_.*",
-                                                   r"kinetic", r"internal", r"damping", r"contact", r"external",
-                                                   r"input", r"boundary", r"residual"])
-    result: dict[str, Any] = {"run": str(run), "damaged_volume": damaged_volume_history(cols)}
-    # Interface states at the first and the last row.
-    areas = {k: (float(v[0]), float(v[-1])) for k, v in cols.items() if k.startswith("area_")}
-    result["interface_areas"] = areas
-    result["anchors"] = {k: {"max": float(np.max(v)), "end": float(v[-1])} for k, v in cols.items() if k.startswith("anchor_")}
-    e = {k: float(cols[k][-1]) for k in ("kinetic", "internal", "damping", "contact", "external", "input", "boundary", "residual") if k in cols}
-    result["energies_end"] = e
+    summary = _load_json(run / "summary.json") if (run / "summary.json").exists() else None
+    static = _load_json(run / "static_summary.json") if (run / "static_summary.json").exists() else None
+    sets, regions = read_sets(sets_path)
+    for r in ("lining", "inner"):
+        if r not in regions:
+            raise PostError(f"{sets_path}: regions {regions} lack '{r}'")
+    hist = run / "histories.csv"
+    cols = read_histories(hist, [r"time", r"damaged_volume_total_.*", r"area_.*", r"anchor_.*"])
+    result: dict[str, Any] = {"damaged_volume": damaged_volume_history(cols, hist)}
+    result["interface_areas"] = interface_areas(cols)
+    result["anchors"] = anchor_forces(cols)
     if summary:
-        result["cost"] = {k: summary.get(k) for k in ("nodes", "elements", "steps", "dt", "end_time", "wall_s", "element_updates_per_s", "threads")}
+        result["cost"] = {k: summary.get(k) for k in ("status", "nodes", "elements", "steps", "dt", "end_time", "wall_s", "element_updates_per_s", "threads")}
     if static:
-        result["static"] = {"steps": [{"name": s.get("name"), "iterations": s.get("iterations"),
-                                        "damaged_volume": s.get("damaged_volume")} for s in static.get("steps", [])],
-                            "wall_s": static.get("wall_s")}
-    import pyvista as pv
-
+        result["static"] = {"steps": [{"name": s.get("name"), "iterations": s.get("iterations"), "damaged_volume": s.get("damaged_volume")}
+                                      for s in static.get("steps", [])], "wall_s": static.get("wall_s")}
     frames = read_pvd(run / "case.pvd")
-    first, last = pv.read(str(frames[0][1])), pv.read(str(frames[-1][1]))
-    threshold = 0.1
-    t0, t1 = frame_table(first, sets, threshold), frame_table(last, sets, threshold)
-    result["sets_0"], result["sets_end"] = t0, t1
-    result["survey"] = survey_table(t0, t1)
-    result["frame_times"] = [frames[0][0], frames[-1][0]]
+    (t0, p0), (t1, p1) = frames[0], frames[-1]
+    first, last = read_vtu(p0), read_vtu(p1)
+    if first.region_names and first.region_names != regions:
+        raise PostError(f"{sets_path}: regions {regions} differ from {p0}'s region_names {first.region_names}")
+    s0, s1 = frame_table(first, sets, sets_path), frame_table(last, sets, sets_path)
+    result["sets_0"], result["sets_end"] = s0, s1
+    result["survey"] = survey_table(s0, s1)
+    result["frame_times"] = [t0, t1]
+    result["frame_files"] = [p0.name, p1.name]
+    result["threshold"] = DAMAGE_THRESHOLD
+    result["damaged_share"] = DAMAGED_SHARE
+    t_tables = time.perf_counter() - t_start
     if maps:
-        when = {"0 s": first, f"{frames[-1][0]:.0f} s": last}
-        result["maps"] = render_maps(when, out, regions.index("lining"), regions.index("inner"))
-    (out / "post.json").write_text(json.dumps(result, indent=1))
+        result["maps"] = render_maps({_label(t0): first, _label(t1): last}, out, regions.index("lining"), regions.index("inner"))
+    result["post_seconds"] = {"tables": t_tables, "total": time.perf_counter() - t_start}
+    fd, tmp = tempfile.mkstemp(dir=out, prefix="post.json", suffix=".tmp")
+    with os.fdopen(fd, "w", encoding="utf-8") as f:
+        json.dump(result, f, indent=1)
+        f.write("\n")
+    os.chmod(tmp, 0o644)
+    os.replace(tmp, out / "post.json")
     return result
 
 
 def main(argv: list[str] | None = None) -> int:
     ap = argparse.ArgumentParser(description=__doc__.split("\n\n")[0])
-    ap.add_argument("run", type=Path)
-    ap.add_argument("--sets", type=Path, required=True)
-    ap.add_argument("--out", type=Path, required=True)
-    ap.add_argument("--no-maps", action="store_true")
+    ap.add_argument("run", type=Path, help="run directory of `dcfm run`")
+    ap.add_argument("--sets", type=Path, required=True, help="the case's <case>_sets.json")
+    ap.add_argument("--out", type=Path, default=None, help="output folder (default: RUN/post)")
+    ap.add_argument("--no-maps", action="store_true", help="tables only")
     a = ap.parse_args(argv)
     try:
-        r = post(a.run, a.sets, a.out, maps=not a.no_maps)
+        r = post(a.run, a.sets, a.out or a.run / "post", maps=not a.no_maps)
     except PostError as e:
         print(f"yingxiuwan_post: {e}", file=sys.stderr)
         return 2
     dv = r["damaged_volume"]
-    print(f"damaged volume: {dv['before']:.1f} m³ before, onset {dv['onset']}, {dv['end']:.1f} m³ at {dv['end_time']:.1f} s")
+    print(f"damaged volume (concrete): {dv['before']:.1f} m³ at 0 s, onset {dv['onset']}, {dv['end']:.1f} m³ at {dv['end_time']:g} s")
+    t0, t1 = r["frame_times"]
     for row in r["survey"]:
-        print(f"  {row['location']:<38} {'yes' if row['damaged'] else 'no ':<4} {row['damaged_volume_end']:.2f} m³ ({100 * row['damaged_share_end']:.1f} %)")
+        if row.get("missing"):
+            print(f"  {row['location']:<38} (set '{row['set']}' not in the frames)")
+            continue
+        print(f"  {row['location']:<38} {t0:g} s: {'yes' if row['damaged_0'] else 'no ':<3} {100 * row['damaged_share_0']:5.1f} %   "
+              f"{t1:g} s: {'yes' if row['damaged'] else 'no ':<3} {100 * row['damaged_share_end']:5.1f} %  (max d {row['max_damage_end']:.2f})")
+    print(f"post-processing: {r['post_seconds']['total']:.1f} s")
     return 0
 
 

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # The main job: set up (.venv, the dcfm module), build, run every verification case
 # (results/verification/results.json + series.json), the Yingxiuwan CI case with its physics
-# checks (results/yingxiuwan/), the cross-checks against independent
+# checks and post-processing (results/yingxiuwan/), the cross-checks against independent
 # codes (results/crosscheck/), and generate the report (reports/index.html,
 # reports/verification.md). Every stage runs even if an earlier one found failures, so
 # that the report shows them; the exit status is non-zero if any stage failed.
@@ -25,6 +25,13 @@ yx=results/yingxiuwan
 "$dcfm" mesh yingxiuwan --variant ci --end 3 --out results/yingxiuwan_case \
   && "$dcfm" run results/yingxiuwan_case/yingxiuwan_ci.toml --out "$yx" --quiet \
   && .venv/bin/python reports/yingxiuwan_checks.py "$yx" --case results/yingxiuwan_case/yingxiuwan_ci.toml \
+  || status=1
+# Its post-processing (reports/yingxiuwan_post.py: damaged-volume history, survey table,
+# contact areas, anchors, maps at the first and last frame; a few seconds), also when a
+# physics check failed, so that the report shows what happened. The old output goes first:
+# the report must not show maps of an earlier run.
+rm -rf "$yx/post"
+.venv/bin/python reports/yingxiuwan_post.py "$yx" --sets results/yingxiuwan_case/yingxiuwan_ci_sets.json --out "$yx/post" \
   || status=1
 echo "main: cross-checks"
 .venv/bin/python -m pytest -q reference/tests || status=1

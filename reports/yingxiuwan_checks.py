@@ -24,7 +24,38 @@ The checks:
 - contact areas: every interface's area split bonded / stick / slide / separated / surface
   sums to the same total on every row (each node's area is in exactly one state);
 - the joint contact solve: steps accepted without settling to the tolerance stay below
-  the accepted change (summary.json `contact_unsettled_steps`, contact/joint.rs).
+  the accepted change (summary.json `contact_unsettled_steps`, contact/joint.rs);
+- damage only where the stress reached the strength (Lee–Fenves: damage grows only with
+  plastic flow, eqs. 24–25; formulas in lee_fenves.py): on every pair of consecutive whole-mesh
+  frames, every element whose d_t or d_c grew has a changed plastic strain and a grown κ_t or
+  κ_c (strictly: the element values are volume averages of the points' stored values, so
+  an element none of whose points changed has bit-identical values); on every frame, every
+  element still undamaged (κ_t = κ_c = 0) has its stress inside the initial yield surface
+  F(σ̄; c̄_t = k_t f_t0, c̄_c = k_c f_c0) ≤ 1e-8 k_c f_c0, and every damaged one-point element
+  (the VTU holds its one point's state) has F(σ̄; c̄(d_t, d_c)) ≤ 1e-8 k_c f_c0, with
+  σ̄ = σ/(1 − D) by eq. (24). A frame's stress is that of its displacements U^{n+1} with the
+  state of the step's update at U^n (one elastic increment beyond the returned stress), so
+  F is evaluated at σ̄ − E₀:ε(Δt V^{n+½}), the update's own stress (U^{n+1} = U^n + Δt V^{n+½}).
+  1e-8 is 100 × the return mapping's tolerance (|F| ≤ 1e-10 f_c0, returned on the admissible
+  side; docs/plastic_damage.md §2): what is left is the round-off of σ/(1 − D) and of the
+  increment. Full-integration elements with damage are not checked against the current
+  surface: the VTU holds their volume averages, not the states of their eight points;
+- anchors in tension where the rock moves inward (docs/anchors.md; perfect bond: the
+  axial force N = EA ε with ε = t·(u(q) − u(p))/l from the host displacement since
+  installation, the bolts being installed when the seismic stage starts): on every frame of
+  anchors.pvd, with the host displacement of the whole-mesh frame of the same time less
+  that of the first frame, interpolated with the trilinear shape functions at the segment
+  ends (hex8_kinematics.py) and taken at U^n as above: every segment whose elongation
+  strain exceeds 1e-9 in magnitude has an axial force of its sign (the floor, a force of
+  EA × 1e-9 ≈ 0.1 N for a φ25 bolt, only leaves unjudged the segments whose strain is too
+  small for its sign to mean a movement of the rock; the recomputed strain agrees with the
+  solver's to round-off of the interpolation, measured 5e-15 on the CI run); and every bar whose head
+  (at the excavation face) moved into the cavern relative to its deep end by more than
+  1e-9 of its length, δ = t·(u_deep − u_head) > 1e-9 L, has a positive length-weighted mean
+  force (its mean is EA δ/L as long as no segment yields).
+
+The whole-mesh frames are those of full.pvd when the case writes compact frames
+(`[output.frames]`, docs/outputs.md), else those of case.pvd.
 
     .venv/bin/python reports/yingxiuwan_checks.py RUN_DIR --case CASE.toml
 """
@@ -48,11 +79,16 @@ from typing import Any
 
 import numpy as np
 
+import hex8_kinematics as hk
+import lee_fenves as lf
+
 # Limits, with their sources in the module docstring.
 ENERGY_RESIDUAL_SHARE = 0.01
 GAP_TOLERANCE_M = 1e-6
 AREA_TOLERANCE = 1e-9
 UNSETTLED_ACCEPTED = 1e-6
+YIELD_TOLERANCE = 1e-8
+ANCHOR_STRAIN_FLOOR = 1e-9
 
 
 class CheckError(Exception):
@@ -167,9 +203,10 @@ def run_checks(run: Path, case_file: Path) -> list[dict[str, Any]]:
     checks.append(check("energy balance", share, ENERGY_RESIDUAL_SHARE, share <= ENERGY_RESIDUAL_SHARE,
                         "largest |residual| of the energy balance over all rows / largest energy term (W12)"))
 
-    frames = read_pvd(run / "case.pvd")
+    pvd = run / "full.pvd" if (run / "full.pvd").exists() else run / "case.pvd"
+    frames = read_pvd(pvd)
     if len(frames) < 2:
-        raise CheckError(f"{run / 'case.pvd'}: {len(frames)} frames, expected the start and the end")
+        raise CheckError(f"{pvd}: {len(frames)} frames, expected the start and the end")
     fields = ["contact_state", "contact_gap", "damage", "damage_tension", "damage_compression"]
     first = read_vtu(frames[0][1], fields)
     last = read_vtu(frames[-1][1], fields)
@@ -238,7 +275,230 @@ def run_checks(run: Path, case_file: Path) -> list[dict[str, Any]]:
     count, change = summary.get("contact_unsettled_steps", [0, 0.0])
     checks.append(check("joint contact solve", float(change), UNSETTLED_ACCEPTED, change <= UNSETTLED_ACCEPTED,
                         f"largest force change left in the {count} of {summary.get('steps')} steps accepted without settling to 1e-10"))
+
+    steps = FrameSteps(summary)
+    checks += damage_checks(frames, case, steps)
+    if anchors:
+        checks += anchor_checks(run, frames, case, steps)
     return checks
+
+
+class FrameSteps:
+    """The step that led to a frame (its U^{n+1} = U^n + h V^{n+½}): Δt, or the shortened
+    last step at the end (docs/outputs.md, "Times")."""
+
+    def __init__(self, summary: dict[str, Any]):
+        self.dt = float(summary["dt"])
+        self.last = float(summary.get("last_dt", self.dt))
+        self.end = float(summary.get("end_time", math.inf))
+
+    def h(self, t: float) -> float:
+        return self.last if abs(t - self.end) <= 1e-9 * self.dt else self.dt
+
+
+MESH_FIELDS = ["Points", "connectivity", "region", "active"]
+
+
+class Mesh:
+    """Geometry of the whole-mesh frames: connectivity, mean gradients, volumes, crack-band
+    lengths; the materials and integration of every region of the case."""
+
+    def __init__(self, frame: dict[str, np.ndarray], case: dict[str, Any], where: str):
+        self.coords = frame["Points"]
+        self.conn = frame["connectivity"].reshape(-1, 8).astype(np.int64)
+        self.grad, self.vol = hk.mean_gradients(self.coords, self.conn)
+        self.length = hk.char_lengths(self.coords, self.conn, self.vol)
+        self.case = case
+        self.regions = case.get("regions", [])
+        self.where = where
+        self._materials: dict[int, lf.PlasticDamage | None] = {}
+
+    def material(self, r: int) -> lf.PlasticDamage | None:
+        """The plastic-damage parameters of region r (None for another model)."""
+        if r not in self._materials:
+            if r >= len(self.regions):
+                raise CheckError(f"{self.where}: region number {r} beyond the case's {len(self.regions)} [[regions]]")
+            name = self.regions[r]["material"]
+            try:
+                self._materials[r] = lf.material(self.case, name, self.where)
+            except lf.MaterialError as e:
+                if "not a plastic_damage" in str(e):
+                    self._materials[r] = None
+                else:
+                    raise CheckError(str(e)) from e
+        return self._materials[r]
+
+    def one_point(self, r: int) -> bool:
+        return self.regions[r].get("integration", "one_point") == "one_point"
+
+
+def _elastic_increment(m: lf.PlasticDamage, de: np.ndarray) -> np.ndarray:
+    """E₀ : Δε (isotropic, Voigt with engineering shears)."""
+    lam, mu = m.lame()
+    out = np.empty_like(de)
+    tr = de[:, :3].sum(axis=1)
+    out[:, :3] = lam * tr[:, None] + 2.0 * mu * de[:, :3]
+    out[:, 3:] = mu * de[:, 3:]
+    return out
+
+
+def damage_checks(frames: list[tuple[float, Path]], case: dict[str, Any], steps: FrameSteps) -> list[dict[str, Any]]:
+    """Damage only where the stress reached the strength (module docstring)."""
+    fields = MESH_FIELDS + ["displacement", "velocity", "stress", "damage_tension", "damage_compression",
+                            "kappa_tension", "kappa_compression", "plastic_strain"]
+    mesh: Mesh | None = None
+    prev: dict[str, np.ndarray] | None = None
+    growths = bad_growth = 0
+    first_bad = ""
+    worst = {"undamaged": (-math.inf, ""), "damaged": (-math.inf, "")}
+    counted = {"undamaged": 0, "damaged": 0}
+    for t, path in frames:
+        f = read_vtu(path, fields)
+        if mesh is None:
+            mesh = Mesh(f, case, str(path))
+        region = f["region"][:, 0].astype(int)
+        active = (f["active"][:, 0] > 0) & (region >= 0)
+        dt_, dc_ = f["damage_tension"][:, 0], f["damage_compression"][:, 0]
+        kt_, kc_ = f["kappa_tension"][:, 0], f["kappa_compression"][:, 0]
+        if prev is not None:
+            grew_t = dt_ > prev["damage_tension"][:, 0]
+            grew_c = dc_ > prev["damage_compression"][:, 0]
+            grew = grew_t | grew_c
+            flow = np.any(f["plastic_strain"] != prev["plastic_strain"], axis=1)
+            hardened = (~grew_t | (kt_ > prev["kappa_tension"][:, 0])) & (~grew_c | (kc_ > prev["kappa_compression"][:, 0]))
+            bad = grew & ~(flow & hardened)
+            growths += int(np.sum(grew))
+            if np.any(bad) and not first_bad:
+                first_bad = f" (first: element {int(np.argmax(bad))} at t = {t:g} s)"
+            bad_growth += int(np.sum(bad))
+        # The update's own stress: one elastic increment back from the frame's (docstring).
+        deps = hk.mean_strain(mesh.grad, mesh.conn, steps.h(t) * f["velocity"])
+        for r in np.unique(region[active]):
+            m = mesh.material(int(r))
+            if m is None:
+                continue
+            sel = np.nonzero(active & (region == r))[0]
+            kt, kc = m.strength_factors(mesh.length[sel])
+            undamaged = (kt_[sel] == 0.0) & (kc_[sel] == 0.0)
+            ct = kt * m.ft0 * (1.0 + m.at * dt_[sel])
+            cc = kc * m.fc0 * (1.0 + m.ac * dc_[sel])
+            eff = lf.effective_stress(f["stress"][sel], dt_[sel], dc_[sel], m.s0) - _elastic_increment(m, deps[sel])
+            rel = lf.yield_function(eff, ct, cc, m.alpha, m.gamma) / (kc * m.fc0)
+            for kind, mask in (("undamaged", undamaged), ("damaged", ~undamaged if mesh.one_point(int(r)) else None)):
+                if mask is None or not np.any(mask):
+                    continue
+                counted[kind] += int(np.sum(mask))
+                k = int(np.argmax(np.where(mask, rel, -np.inf)))
+                if rel[k] > worst[kind][0]:
+                    worst[kind] = (float(rel[k]), f"element {int(sel[k])} ({mesh.regions[int(r)]['name']}) at t = {t:g} s")
+        prev = f
+    out = [check("damage only with plastic flow", float(bad_growth), 0.0, bad_growth == 0,
+                 f"element-frames whose d_t or d_c grew since the previous frame without a change of plastic strain "
+                 f"or growth of κ_t/κ_c (eq. 24: damage comes through plastic flow), of {growths} that grew{first_bad}")]
+    for kind, name, what in (
+        ("undamaged", "undamaged elements inside the initial yield surface",
+         "largest F(σ̄)/(k_c f_c0) (eq. 25) of an active element with κ_t = κ_c = 0, at the update's stress"),
+        ("damaged", "damaged elements on or inside the yield surface",
+         "largest F(σ̄; c̄(d_t, d_c))/(k_c f_c0) (eq. 25) of a one-point element with κ > 0, σ̄ = σ/(1 − D) of eq. (24)"),
+    ):
+        value, where = worst[kind]
+        n = counted[kind]
+        out.append(check(name, value if n else None, YIELD_TOLERANCE, (not n) or value <= YIELD_TOLERANCE,
+                         f"{what}; {n} element-frames" + (f", worst {where}" if n else ": none")))
+    return out
+
+
+def anchor_checks(run: Path, frames: list[tuple[float, Path]], case: dict[str, Any], steps: FrameSteps) -> list[dict[str, Any]]:
+    """Anchors in tension where the rock moves inward (module docstring)."""
+    apvd = run / "anchors.pvd"
+    if not apvd.exists():
+        raise CheckError(f"{apvd}: missing: the case has anchors but writes no per-bar output "
+                         "([output.frames] anchors = true, docs/outputs.md)")
+    for kind in ("bars", "patterns"):
+        for i, g in enumerate(case.get("anchors", {}).get(kind, [])):
+            for key in ("bond_stiffness", "pretension"):
+                if g.get(key, 0.0):
+                    raise CheckError(f"anchors.{kind}[{i}].{key} = {g[key]}: the check compares the force of "
+                                     "perfect-bond bars without pretension (N = EA ε) with the rock's elongation")
+    bars = read_pvd(apvd)
+    by_time = {round(t, 9): p for t, p in frames}
+    first = read_vtu(frames[0][1], MESH_FIELDS + ["displacement"])
+    coords = first["Points"]
+    conn = first["connectivity"].reshape(-1, 8).astype(np.int64)
+    u0 = first["displacement"]
+    active = np.nonzero((first["active"][:, 0] > 0) & (first["region"][:, 0] >= 0))[0]
+    geo = read_vtu(bars[0][1], ["Points", "connectivity", "bar"])
+    lines = geo["connectivity"].reshape(-1, 2).astype(np.int64)
+    p, q = geo["Points"][lines[:, 0]], geo["Points"][lines[:, 1]]
+    length = np.linalg.norm(q - p, axis=1)
+    axis = (q - p) / length[:, None]
+    bar = geo["bar"][:, 0].astype(np.int64)
+    # Each segment lies in one host element (docs/anchors.md): the active one holding its
+    # midpoint; both ends' natural coordinates in that element.
+    host, _ = hk.locate(coords, conn, active, 0.5 * (p + q))
+    if np.any(host < 0):
+        k = int(np.argmax(host < 0))
+        raise CheckError(f"{bars[0][1]}: segment {k} (bar {bar[k]}) at {0.5 * (p[k] + q[k])} lies in no active element")
+    shape = []
+    for ends in (p, q):
+        xi = np.zeros((len(ends), 3))
+        for k, (e, x) in enumerate(zip(host, ends)):
+            h, xk = hk.locate(coords, conn, np.array([e]), x[None, :], slack=1e-7)
+            if h[0] != e:
+                raise CheckError(f"{bars[0][1]}: an end of segment {k} lies outside the element {e} holding its midpoint")
+            xi[k] = xk[0]
+        shape.append(hk.shape_values(xi))
+    # A bar's segments run from its start (a pattern bolt's head, on the excavation face) to
+    # its end (deep in the rock) and tile it, so their elongations add up to the bar's,
+    # δ = t·(u_end − u_start), and their length-weighted mean force is its mean force.
+    nbars = int(bar.max()) + 1 if len(bar) else 0
+    # EA of the bars when every group has the same (the frames do not name a bar's group):
+    # then |N − EA ε| is reported too (perfect bond below yield: N = EA ε, docs/anchors.md).
+    groups = case.get("anchors", {}).get("bars", []) + case.get("anchors", {}).get("patterns", [])
+    stiffness = {g.get("young", 200e9) * math.pi * g["diameter"] ** 2 / 4.0 for g in groups}
+    ea = next(iter(stiffness)) if len(stiffness) == 1 else None
+    deviation = 0.0
+    sign_bad = inward = inward_bad = 0
+    first_bad = ""
+    for t, path in bars:
+        full = by_time.get(round(t, 9))
+        if full is None:
+            continue
+        force = read_vtu(path, ["axial_force"])["axial_force"][:, 0]
+        if len(force) != len(lines):
+            raise CheckError(f"{path}: {len(force)} segments, the first frame has {len(lines)}")
+        f = read_vtu(full, ["displacement", "velocity"])
+        u = f["displacement"] - steps.h(t) * f["velocity"] - u0
+        ue = u[conn[host]]
+        du = np.einsum("sa,sai->si", shape[1], ue) - np.einsum("sa,sai->si", shape[0], ue)
+        elong = np.einsum("si,si->s", axis, du)
+        strain = elong / length
+        judged = np.abs(strain) > ANCHOR_STRAIN_FLOOR
+        wrong = judged & (np.sign(force) != np.sign(strain))
+        if np.any(wrong) and not first_bad:
+            k = int(np.argmax(wrong))
+            first_bad = f"; first: segment {k} of bar {bar[k]} at t = {t:g} s, N = {force[k]:.4g} N, ε = {strain[k]:.3e}"
+        sign_bad += int(np.sum(wrong))
+        if ea is not None and np.any(force != 0.0):
+            deviation = max(deviation, float(np.max(np.abs(force - ea * strain)) / np.max(np.abs(force))))
+        delta = np.bincount(bar, elong, nbars)
+        total = np.bincount(bar, length, nbars)
+        mean = np.bincount(bar, force * length, nbars) / np.where(total > 0, total, 1.0)
+        moved_in = delta > ANCHOR_STRAIN_FLOOR * total
+        inward += int(np.sum(moved_in))
+        inward_bad += int(np.sum(moved_in & (mean <= 0.0)))
+    matched = sum(1 for t, _ in bars if round(t, 9) in by_time)
+    if matched < 2:
+        raise CheckError(f"{apvd}: {matched} frames at the times of the whole-mesh frames, expected the start and later ones")
+    return [
+        check("anchor forces follow the rock's elongation", float(sign_bad), 0.0, sign_bad == 0,
+              f"segment-frames whose axial force has the other sign than the elongation of the host rock "
+              f"since installation (|ε| > {ANCHOR_STRAIN_FLOOR:g}), {len(lines)} segments × {matched} frames{first_bad}"
+              + (f"; largest |N − EA ε| / largest |N| of a frame: {deviation:.1e}" if ea is not None else "")),
+        check("anchors in tension where the rock moves inward", float(inward_bad), 0.0, inward_bad == 0,
+              f"bar-frames whose head moved into the cavern relative to the deep end (δ > {ANCHOR_STRAIN_FLOOR:g} L) "
+              f"and whose mean axial force is not tensile, of {inward} such bar-frames ({nbars} bars)"),
+    ]
 
 
 def main(argv: list[str] | None = None) -> int:
@@ -256,7 +516,8 @@ def main(argv: list[str] | None = None) -> int:
         json.dump(checks, f, indent=1)
     os.replace(tmp, args.run / "checks.json")
     for c in checks:
-        print(f"{'ok  ' if c['passed'] else 'FAIL'} {c['name']}: {c['value']:.3e} (limit {c['limit']:.3e})")
+        value = "–" if c["value"] is None else f"{c['value']:.3e}"
+        print(f"{'ok  ' if c['passed'] else 'FAIL'} {c['name']}: {value} (limit {c['limit']:.3e})")
     return 0 if all(c["passed"] for c in checks) else 1
 
 

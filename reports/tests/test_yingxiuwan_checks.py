@@ -1,11 +1,14 @@
 """The Yingxiuwan physics checks read dcfm's two VTU layouts and fail when the physics is
 broken: a penetrating contact node, a damage variable that decreases, a damaged volume
-that drops, an anchor above its yield force, an interface whose state areas do not add up."""
+that drops, an anchor above its yield force, an interface whose state areas do not add up,
+damage without plastic flow, an undamaged element beyond the yield surface, a damaged one
+outside its current surface, a bolt in compression where the rock moved into the cavern."""
 
 from __future__ import annotations
 
 import base64
 import json
+import math
 import sys
 import zlib
 from pathlib import Path
@@ -16,9 +19,37 @@ import pytest
 REPORTS = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPORTS))
 
+import lee_fenves as lf  # noqa: E402
 import yingxiuwan_checks as yc  # noqa: E402
 
 CASE = """
+[[regions]]
+name = "rock"
+material = "rock"
+integration = "one_point"
+
+[[regions]]
+name = "lining"
+material = "concrete"
+integration = "full"
+
+[materials.rock]
+model = "plastic_damage"
+young = 10.0e9
+poisson = 0.25
+[materials.rock.plastic_damage]
+ft0 = 1.97e6
+cohesion = 2.18e6
+friction_angle_deg = 41.6
+
+[materials.concrete]
+model = "plastic_damage"
+young = 25.0e9
+poisson = 0.17
+[materials.concrete.plastic_damage]
+ft0 = 1.30e6
+fc = 9.9e6
+
 [[interfaces]]
 name = "lr"
 
@@ -28,53 +59,109 @@ diameter = 0.025
 yield_stress = 335e6
 """
 YIELD = 335e6 * np.pi * 0.025**2 / 4
+EA = 200e9 * np.pi * 0.025**2 / 4
+FT_ROCK, FT_CONCRETE = 1.97e6, 1.30e6
+
+# Two unit cubes in a row along x: element 0 rock (one-point), element 1 lining (full).
+POINTS = np.array([[x, y, z] for z in (0.0, 1.0) for y in (0.0, 1.0) for x in (0.0, 1.0, 2.0)])
+CONN = np.array([[0, 1, 4, 3, 6, 7, 10, 9], [1, 2, 5, 4, 7, 8, 11, 10]])
+# A bolt from the face x = 0.1 (the cavern at x < 0) to x = 1.9, cut at the shared face.
+BOLT = np.array([[0.1, 0.5, 0.5], [1.0, 0.5, 0.5], [1.0, 0.5, 0.5], [1.9, 0.5, 0.5]])
+STRETCH = 1e-5  # u_x = STRETCH x: the face moves into the cavern relative to the deep end
 
 
-def write_vtu(path: Path, arrays: dict[str, np.ndarray], compressed: bool = False) -> None:
+def write_vtu(path: Path, points: dict[str, np.ndarray], cells: dict[str, np.ndarray],
+              geometry: dict[str, np.ndarray], compressed: bool = False) -> None:
     """A VTU in the layout dcfm writes: base64 streams (header + data per array), or raw
     zlib blocks (VTK's compressed appended layout)."""
-    decls, blobs, offset = [], [], 0
-    for name, a in arrays.items():
-        data = a.astype("<f8").tobytes()
+    blobs, offset = [], 0
+
+    def decl(name: str, a: np.ndarray) -> str:
+        nonlocal offset
+        a = np.asarray(a)
+        kind = "Int64" if a.dtype.kind == "i" else "Float64"
+        data = a.astype("<i8" if kind == "Int64" else "<f8").tobytes()
         if compressed:
             block = zlib.compress(data)
             blob = np.array([1, len(data), 0, len(block)], "<u8").tobytes() + block
         else:
             blob = base64.b64encode(np.array([len(data)], "<u8").tobytes() + data)
-        decls.append(f'<DataArray type="Float64" Name="{name}" NumberOfComponents="1" format="appended" offset="{offset}"/>')
+        ncomp = a.shape[1] if a.ndim == 2 else 1
+        text = f'<DataArray type="{kind}" Name="{name}" NumberOfComponents="{ncomp}" format="appended" offset="{offset}"/>'
         blobs.append(blob)
         offset += len(blob)
+        return text
+
+    pd = "".join(decl(k, v) for k, v in points.items())
+    cd = "".join(decl(k, v) for k, v in cells.items())
+    pts = "".join(decl(k, v) for k, v in geometry.items() if k == "Points")
+    cl = "".join(decl(k, v) for k, v in geometry.items() if k != "Points")
     compressor = ' compressor="vtkZLibDataCompressor"' if compressed else ""
     head = (
         f'<?xml version="1.0"?>\n<VTKFile type="UnstructuredGrid" version="1.0" byte_order="LittleEndian" header_type="UInt64"{compressor}>\n'
-        f'<UnstructuredGrid><Piece NumberOfPoints="4" NumberOfCells="2"><PointData>{"".join(decls)}</PointData></Piece></UnstructuredGrid>\n'
+        f'<UnstructuredGrid><Piece NumberOfPoints="{len(geometry["Points"])}" NumberOfCells="2"><PointData>{pd}</PointData>'
+        f'<CellData>{cd}</CellData><Points>{pts}</Points><Cells>{cl}</Cells></Piece></UnstructuredGrid>\n'
         f'<AppendedData encoding="{"raw" if compressed else "base64"}">\n_'
     )
     path.write_bytes(head.encode() + b"".join(blobs) + b"\n</AppendedData>\n</VTKFile>\n")
 
 
+def uniaxial(s: float) -> list[float]:
+    return [s, 0.0, 0.0, 0.0, 0.0, 0.0]
+
+
 def make_run(tmp: Path, *, gap: float = 0.0, dt_drop: float = 0.0, dv_drop: float = 0.0,
-             anchor: float = 0.5, area_drift: float = 0.0, compressed: bool = False) -> tuple[Path, Path]:
+             anchor: float = 0.5, area_drift: float = 0.0, compressed: bool = False,
+             no_flow: bool = False, undamaged_stress: float = 0.5, damaged_stress: float = 0.9,
+             bolt_sign: float = 1.0, full_pvd: bool = False) -> tuple[Path, Path]:
+    """A run of two elements and one bolt over two frames (t = 0: the state at which the
+    bolt is installed; t = 1 s). Element 0 (rock, one point) cracks in uniaxial tension,
+    its stress at `damaged_stress` × f_t0 (effective), its plastic strain growing unless
+    `no_flow`; element 1 (lining, full integration) stays undamaged in uniaxial tension,
+    0.5 f_t0 at t = 0 and `undamaged_stress` × f_t0 at t = 1 s. The rock stretches by STRETCH along the bolt, whose force
+    is `bolt_sign` × EA STRETCH."""
     run = tmp / "run"
     run.mkdir()
     case = tmp / "case.toml"
     case.write_text(CASE, encoding="utf-8")
-    frames = []
+    frames, bolts = [], []
     for k, t in enumerate([0.0, 1.0]):
-        state = np.array([0.0, 2.0, 3.0, -1.0])
-        gaps = np.array([0.0, gap if k == 1 else 0.0, 1e-4, 0.0])
-        d_t = np.array([0.1, 0.2 - (dt_drop if k == 1 else 0.0), 0.0, 0.0]) + 0.1 * k
-        d_c = np.array([0.0, 0.0, 0.0, 0.0])
-        write_vtu(run / f"f{k}.vtu", {"contact_state": state, "contact_gap": gaps, "damage": d_t,
-                                       "damage_tension": d_t, "damage_compression": d_c}, compressed)
+        state = np.array([0.0, 2.0, 3.0] + [-1.0] * 9)
+        gaps = np.array([0.0, gap if k == 1 else 0.0, 1e-4] + [0.0] * 9)
+        u = np.zeros((12, 3))
+        u[:, 0] = STRETCH * POINTS[:, 0] * k
+        d_t = np.array([0.1 + 0.1 * k - (dt_drop if k == 1 else 0.0), 0.0])
+        d_c = np.zeros(2)
+        # D of eq. (24) in uniaxial tension (r = 1, s = 1): d_t.
+        stress = np.array([uniaxial((1.0 - d_t[0]) * damaged_stress * FT_ROCK),
+                           uniaxial((undamaged_stress if k == 1 else 0.5) * FT_CONCRETE)])
+        ep = np.zeros((2, 6))
+        ep[0, 0] = 1e-5 * (1 if no_flow else 1 + k)
+        write_vtu(run / f"f{k}.vtu",
+                  {"displacement": u, "velocity": np.zeros((12, 3)), "contact_state": state, "contact_gap": gaps},
+                  {"stress": stress, "damage": d_t, "damage_tension": d_t, "damage_compression": d_c,
+                   "kappa_tension": d_t, "kappa_compression": d_c, "plastic_strain": ep,
+                   "region": np.array([0.0, 1.0]), "active": np.array([1.0, 1.0])},
+                  {"Points": POINTS, "connectivity": CONN.reshape(-1), "offsets": np.array([8, 16])}, compressed)
         frames.append(f'<DataSet timestep="{t}" file="f{k}.vtu"/>')
-    (run / "case.pvd").write_text(f'<VTKFile type="Collection"><Collection>{"".join(frames)}</Collection></VTKFile>', encoding="utf-8")
+        force = np.full(2, bolt_sign * EA * STRETCH * k)
+        write_vtu(run / f"a{k}.vtu", {}, {"axial_force": force, "bar": np.zeros(2)},
+                  {"Points": BOLT, "connectivity": np.array([0, 1, 2, 3]), "offsets": np.array([2, 4])}, compressed)
+        bolts.append(f'<DataSet timestep="{t}" file="a{k}.vtu"/>')
+    collection = f'<VTKFile type="Collection"><Collection>{"".join(frames)}</Collection></VTKFile>'
+    (run / ("full.pvd" if full_pvd else "case.pvd")).write_text(collection, encoding="utf-8")
+    if full_pvd:  # compact frames in case.pvd: the checks must read full.pvd
+        (run / "case.pvd").write_text('<VTKFile type="Collection"><Collection><DataSet timestep="0" file="compact.vtu"/>'
+                                      '</Collection></VTKFile>', encoding="utf-8")
+    (run / "anchors.pvd").write_text(f'<VTKFile type="Collection"><Collection>{"".join(bolts)}</Collection></VTKFile>',
+                                     encoding="utf-8")
     header = ["time", "kinetic", "internal", "residual", "damaged_volume_total_lining", "anchor_bolts_max_force",
               "area_bonded_lr", "area_stick_lr", "area_slide_lr", "area_separated_lr", "area_surface_lr"]
     rows = [[0.0, 0.0, 10.0, 0.0, 5.0, 0.0, 4.0, 0.0, 0.0, 0.0, 0.0],
             [1.0, 1.0, 9.0, 1e-3, 5.0 - dv_drop, anchor * YIELD, 3.0, 0.5, 0.5 + area_drift, 0.0, 0.0]]
     (run / "histories.csv").write_text(",".join(header) + "\n" + "\n".join(",".join(map(str, r)) for r in rows) + "\n", encoding="utf-8")
-    (run / "summary.json").write_text(json.dumps({"steps": 10, "contact_unsettled_steps": [0, 0.0]}), encoding="utf-8")
+    (run / "summary.json").write_text(json.dumps({"steps": 10, "dt": 1e-4, "end_time": 1.0, "last_dt": 1e-4,
+                                                  "contact_unsettled_steps": [0, 0.0]}), encoding="utf-8")
     return run, case
 
 
@@ -82,9 +169,9 @@ def failed(run: Path, case: Path) -> set[str]:
     return {c["name"] for c in yc.run_checks(run, case) if not c["passed"]}
 
 
-@pytest.mark.parametrize("compressed", [False, True])
-def test_a_sound_run_passes_in_both_layouts(tmp_path, compressed):
-    run, case = make_run(tmp_path, compressed=compressed)
+@pytest.mark.parametrize("compressed, full_pvd", [(False, False), (True, False), (False, True)])
+def test_a_sound_run_passes_in_both_layouts(tmp_path, compressed, full_pvd):
+    run, case = make_run(tmp_path, compressed=compressed, full_pvd=full_pvd)
     assert failed(run, case) == set()
     assert yc.main([str(run), "--case", str(case)]) == 0
     assert all(c["passed"] for c in json.loads((run / "checks.json").read_text()))
@@ -98,6 +185,9 @@ def test_a_sound_run_passes_in_both_layouts(tmp_path, compressed):
         ({"dv_drop": 0.5}, "damaged volume never decreases"),
         ({"anchor": 1.01}, "anchors within yield"),
         ({"area_drift": 0.01}, "interface areas conserved"),
+        ({"no_flow": True}, "damage only with plastic flow"),
+        ({"undamaged_stress": 1.001}, "undamaged elements inside the initial yield surface"),
+        ({"damaged_stress": 1.001}, "damaged elements on or inside the yield surface"),
     ],
 )
 def test_broken_physics_fails_its_check(tmp_path, broken, name):
@@ -111,3 +201,58 @@ def test_an_unreadable_frame_is_named(tmp_path):
     (run / "f1.vtu").write_text("<VTKFile/>", encoding="utf-8")
     with pytest.raises(yc.CheckError, match="f1.vtu"):
         yc.run_checks(run, case)
+
+
+def test_a_bolt_in_compression_where_the_rock_moved_inward_fails(tmp_path):
+    run, case = make_run(tmp_path, bolt_sign=-1.0)
+    assert failed(run, case) == {"anchor forces follow the rock's elongation", "anchors in tension where the rock moves inward"}
+    checks = {c["name"]: c for c in yc.run_checks(run, case)}
+    assert checks["anchor forces follow the rock's elongation"]["value"] == 2  # both segments, frame t = 1
+    assert checks["anchors in tension where the rock moves inward"]["value"] == 1  # the bolt at t = 1
+
+
+def test_the_anchor_check_needs_per_bar_output(tmp_path):
+    run, case = make_run(tmp_path)
+    (run / "anchors.pvd").unlink()
+    with pytest.raises(yc.CheckError, match="anchors.pvd"):
+        yc.run_checks(run, case)
+
+
+def test_bond_slip_bars_are_refused_by_name(tmp_path):
+    run, case = make_run(tmp_path)
+    case.write_text(CASE.replace("yield_stress = 335e6", "yield_stress = 335e6\nbond_stiffness = 1e8"), encoding="utf-8")
+    with pytest.raises(yc.CheckError, match=r"anchors.patterns\[0\].bond_stiffness"):
+        yc.run_checks(run, case)
+
+
+def test_the_update_stress_is_one_elastic_increment_before_the_frame(tmp_path):
+    """A frame's stress lies one elastic increment E₀:ε(Δt V) beyond the update's: an
+    undamaged element at 0.999 f_t0 whose velocity stretches it by 0.2 % of f_t0 per step
+    shows 1.001 f_t0 in the frame; the check reads it back to 0.999 f_t0 and passes. With
+    the velocity reversed (the update's stress at 1.003 f_t0) it fails."""
+    lam_mu = lf.material(__import__("tomllib").loads(CASE), "concrete", "case").lame()
+    # Uniaxial stress increment 0.002 f_t0 from a strain increment along x only: σ_xx =
+    # (λ + 2μ) Δε_xx (lateral stresses λ Δε_xx as well; F's margin absorbs them below).
+    de = 0.002 * FT_CONCRETE / (lam_mu[0] + 2 * lam_mu[1])
+    for sign, broken in ((1.0, False), (-1.0, True)):
+        sub = tmp_path / ("up" if sign > 0 else "down")
+        sub.mkdir()
+        run, case = make_run(sub, undamaged_stress=1.001)
+        # Velocities: v_x = sign × de/Δt × (x − 1) on the lining element (x in [1, 2]).
+        v = np.zeros((12, 3))
+        v[:, 0] = sign * de / 1e-4 * np.maximum(POINTS[:, 0] - 1.0, 0.0)
+        frame = yc.read_vtu(run / "f1.vtu", ["displacement", "contact_state", "contact_gap", "stress", "damage",
+                                              "damage_tension", "damage_compression", "kappa_tension",
+                                              "kappa_compression", "plastic_strain", "region", "active",
+                                              "Points", "connectivity", "offsets"])
+        stress = frame["stress"].copy()
+        # The frame's lateral stresses follow the same increment.
+        stress[1, 1] = stress[1, 2] = sign * lam_mu[0] * de
+        write_vtu(run / "f1.vtu",
+                  {"displacement": frame["displacement"], "velocity": v, "contact_state": frame["contact_state"],
+                   "contact_gap": frame["contact_gap"]},
+                  {k: frame[k] for k in ("damage", "damage_tension", "damage_compression", "kappa_tension",
+                                          "kappa_compression", "plastic_strain", "region", "active")} | {"stress": stress},
+                  {"Points": frame["Points"], "connectivity": frame["connectivity"].reshape(-1), "offsets": frame["offsets"]})
+        got = {c["name"]: c for c in yc.run_checks(run, case)}["undamaged elements inside the initial yield surface"]
+        assert got["passed"] is (not broken), got

@@ -100,6 +100,14 @@ impl CompactFrames {
         &mut self.full
     }
 
+    /// The collections beside `case.pvd`: the whole-mesh frames and, when written, the
+    /// anchor frames.
+    pub fn collections(&self) -> Vec<&PvdCollection> {
+        std::iter::once(&self.full)
+            .chain(self.anchors.as_ref())
+            .collect()
+    }
+
     /// Whether the whole mesh is due at `step` (`last`: the run's last step).
     pub fn full_due(&self, step: u64, first: bool, last: bool) -> bool {
         first || last || (self.full_every > 0 && step.is_multiple_of(self.full_every))

@@ -522,9 +522,14 @@ fn list_changes(changes: &[String]) -> String {
     s
 }
 
-/// Step of a VTU frame written by [`write_state_vtu`] (`mesh_000120.vtu` → 120).
+/// Step of a VTU frame written by [`write_state_vtu`] (`mesh_000120.vtu` → 120) or, with
+/// `[output.frames]`, by [`crate::frames::CompactFrames`] (`frame_000120.vtu`,
+/// `anchors_000120.vtu`).
 fn frame_step(file: &str) -> Option<u64> {
-    let digits = file.strip_prefix("mesh_")?.strip_suffix(".vtu")?;
+    let digits = ["mesh_", "frame_", "anchors_"]
+        .iter()
+        .find_map(|prefix| file.strip_prefix(prefix))?
+        .strip_suffix(".vtu")?;
     if digits.is_empty() || !digits.bytes().all(|b| b.is_ascii_digit()) {
         return None;
     }
@@ -595,15 +600,22 @@ fn early_failure(
 /// Remove from `out` the VTU frames that `pvd` does not list (left by an earlier run in
 /// the same folder, or written after the checkpoint a run resumes from) and the temporary
 /// files of atomic writes that a killed process left (`.<name>.<pid>.<n>.tmp`, another
-/// pid), so that the folder holds exactly this run's frames.
-fn remove_stale_files(out: &Path, pvd: &PvdCollection) -> Result<()> {
+/// pid), so that the folder holds exactly this run's frames. `others`: with
+/// `[output.frames]` the collections of the whole-mesh and anchor frames (`full.pvd`,
+/// `anchors.pvd`), whose files are this run's too (the first whole-mesh frame, written
+/// before this cleanup, was removed as stale before).
+fn remove_stale_files(out: &Path, pvd: &PvdCollection, others: &[&PvdCollection]) -> Result<()> {
     let io = |e| DcfmError::io(out.display().to_string(), e);
     let own = format!(".{}.", std::process::id());
     for entry in std::fs::read_dir(out).map_err(io)? {
         let entry = entry.map_err(io)?;
         let name = entry.file_name().to_string_lossy().into_owned();
         let stale_frame = (frame_step(&name).is_some() || failure_frame_step(&name).is_some())
-            && !pvd.entries().iter().any(|e| e.file == name);
+            && !pvd
+                .entries()
+                .iter()
+                .chain(others.iter().flat_map(|c| c.entries()))
+                .any(|e| e.file == name);
         let killed_write = name.starts_with('.') && name.ends_with(".tmp") && !name.contains(&own);
         if (stale_frame || killed_write) && entry.file_type().map_err(io)?.is_file() {
             std::fs::remove_file(entry.path()).map_err(io)?;
@@ -737,7 +749,8 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
         })
     };
     let (mut pvd, mut hist) = opened().map_err(early)?;
-    remove_stale_files(out, &pvd).map_err(early)?;
+    let others = frames.as_ref().map(|f| f.collections()).unwrap_or_default();
+    remove_stale_files(out, &pvd, &others).map_err(early)?;
     let bar = if opts.progress {
         crate::progress::run_bar(ProgressDrawTarget::stderr(), total_steps, sim.step, dt)
     } else {

@@ -237,3 +237,95 @@ fn a_resumed_run_with_yielding_anchors_matches_an_uninterrupted_run() {
     );
     let _ = std::fs::remove_dir_all(&root);
 }
+
+/// With `[output.frames]` the whole-mesh frames go to full.pvd; the first of them is written
+/// before the run clears its folder of stale frames and was removed as one (full.pvd then
+/// listed a missing mesh_000000.vtu, and the Yingxiuwan checks lost the state at which the
+/// bolts are installed).
+fn compact(text: &str) -> String {
+    text.replace("vtu_every = 0", "vtu_every = 2")
+        + "[output.frames]\nregions = [\"b\"]\nfull_every = 4\n"
+}
+
+fn run_anchored(text: &str, out: &Path, resume: bool) {
+    run_case(
+        parse_case(text, "anchored.toml", Path::new(".")).unwrap(),
+        &RunOptions {
+            out: out.to_path_buf(),
+            resume,
+            progress: false,
+            ..Default::default()
+        },
+    )
+    .unwrap();
+}
+
+/// (file, time) of every entry of a collection.
+fn listed(pvd: &Path) -> Vec<(String, u64)> {
+    PvdCollection::load(pvd)
+        .unwrap()
+        .entries()
+        .iter()
+        .map(|e| (e.file.clone(), e.time.to_bits()))
+        .collect()
+}
+
+fn vtu_files(out: &Path) -> BTreeSet<String> {
+    std::fs::read_dir(out)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".vtu"))
+        .collect()
+}
+
+#[test]
+fn compact_frames_keep_every_whole_mesh_frame_that_full_pvd_lists() {
+    let root = dir("compact");
+    let out = root.join("out");
+    run_anchored(&compact(ANCHORED), &out, false);
+    let full: Vec<String> = PvdCollection::load(&out.join("full.pvd"))
+        .unwrap()
+        .entries()
+        .iter()
+        .map(|e| e.file.clone())
+        .collect();
+    assert!(full.contains(&"mesh_000000.vtu".to_string()), "{full:?}");
+    assert!(full.len() >= 3, "{full:?}");
+    for f in full {
+        assert!(
+            out.join(&f).exists(),
+            "full.pvd lists {f}, not in the folder"
+        );
+    }
+    let anchors = PvdCollection::load(&out.join("anchors.pvd")).unwrap();
+    for e in anchors.entries() {
+        assert!(out.join(&e.file).exists(), "anchors.pvd lists {}", e.file);
+    }
+    let _ = std::fs::remove_dir_all(&root);
+}
+
+/// A run with compact frames, interrupted and resumed, lists in case.pvd, full.pvd and
+/// anchors.pvd the frames of an uninterrupted run and leaves the same files (case.pvd lost
+/// every compact frame on resume: its entries were filtered by the name `mesh_NNNNNN.vtu`).
+#[test]
+fn a_resumed_run_with_compact_frames_lists_the_frames_of_an_uninterrupted_run() {
+    let root = dir("compact-resume");
+    let text = compact(ANCHORED);
+    run_anchored(&text, &root.join("full"), false);
+    run_anchored(
+        &text.replace("end = 0.002", "end = 0.0011"),
+        &root.join("part"),
+        false,
+    );
+    run_anchored(&text, &root.join("part"), true);
+    for name in ["case.pvd", "full.pvd", "anchors.pvd"] {
+        let (a, b) = (
+            listed(&root.join("full").join(name)),
+            listed(&root.join("part").join(name)),
+        );
+        assert!(a.len() >= 3, "{name}: {a:?}");
+        assert_eq!(a, b, "{name}");
+    }
+    assert_eq!(vtu_files(&root.join("full")), vtu_files(&root.join("part")));
+    let _ = std::fs::remove_dir_all(&root);
+}

@@ -24,6 +24,12 @@ fn static_stage_converges_and_bonded_pairs_hold_where_interfaces_meet() {
     .unwrap();
     let text = std::fs::read_to_string(&out.case_file).unwrap();
     let case = parse_case(&text, "yingxiuwan_ci.toml", &dir).unwrap();
+    // Compact frames with the bolts' per-segment forces, and the whole mesh at every frame:
+    // the physics checks (reports/yingxiuwan_checks.py) read both frame by frame.
+    let frames = case.output.frames.as_ref().expect("[output.frames]");
+    assert!(frames.anchors);
+    assert_eq!(frames.full_every, case.output.vtu_every);
+    assert_eq!(frames.regions, ["lining", "inner"]);
     let plan = case.static_plan.unwrap();
     let tolerances: Vec<f64> = plan.steps.iter().map(|s| s.convergence.tolerance).collect();
     let (model, result) = static_stage::run(case.model, &plan).unwrap();

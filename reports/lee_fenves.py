@@ -54,6 +54,7 @@ class PlasticDamage:
     gamma: float
     s0: float
     regularisation: str
+    recovery: str = "lee_fenves"
 
     def strength_factors(self, length: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
         """k_t, k_c for elements of characteristic length l (m)."""
@@ -81,9 +82,9 @@ def material(case: dict[str, Any], name: str, where: str) -> PlasticDamage:
         if p.get(key, default) != default:
             raise MaterialError(f"{where}: materials.{name}.plastic_damage.{key} = {p[key]}: "
                                 f"the check reconstructs the default (r = d/b = 1, rate independent) only")
-    if p.get("recovery", "lee_fenves") != "lee_fenves":
-        raise MaterialError(f"{where}: materials.{name}.plastic_damage.recovery = {p['recovery']!r}: "
-                            "the check reconstructs σ̄ from eq. (24) ('lee_fenves') only")
+    recovery = p.get("recovery", "lee_fenves")
+    if recovery not in ("lee_fenves", "consistent"):
+        raise MaterialError(f"{where}: materials.{name}.plastic_damage.recovery = {recovery!r}")
     reg = p.get("regularisation", "plastic")
     if reg not in ("plastic", "total"):
         raise MaterialError(f"{where}: materials.{name}.plastic_damage.regularisation = {reg!r}")
@@ -104,7 +105,7 @@ def material(case: dict[str, Any], name: str, where: str) -> PlasticDamage:
         at=float(p.get("at", 0.0)), ac=ac,
         gt=float(p.get("gt", 73.0 * fc_mpa**0.18)), gc=float(p.get("gc", 8.8e3 * math.sqrt(fc_mpa))),
         alpha=(fb - 1.0) / (2.0 * fb - 1.0), gamma=3.0 * (1.0 - kc) / (2.0 * kc - 1.0),
-        s0=float(p.get("s0", 0.0)), regularisation=reg)
+        s0=float(p.get("s0", 0.0)), regularisation=reg, recovery=recovery)
 
 
 def principal(sig: np.ndarray) -> np.ndarray:

@@ -63,8 +63,6 @@ The whole-mesh frames are those of full.pvd when the case writes compact frames
 from __future__ import annotations
 
 import argparse
-import base64
-import binascii
 import csv
 import json
 import math
@@ -72,13 +70,12 @@ import os
 import sys
 import tempfile
 import tomllib
-import xml.etree.ElementTree as ET
-import zlib
 from pathlib import Path
 from typing import Any
 
 import numpy as np
 
+import dcfm_vtu
 import hex8_kinematics as hk
 import lee_fenves as lf
 
@@ -96,83 +93,25 @@ class CheckError(Exception):
 
 
 def read_vtu(path: Path, names: list[str]) -> dict[str, np.ndarray]:
-    """The named point and cell arrays of a VTU file as written by dcfm, as arrays of shape
-    (n, components): appended data either base64 (one stream per array: a UInt64 byte
-    count, then the values; solver/app/src/output/vtu.rs) or raw with zlib-compressed
-    blocks (VTK's vtkZLibDataCompressor layout; output/vtu_compressed.rs)."""
-    raw = path.read_bytes()
-    marker = raw.find(b"<AppendedData")
-    if marker < 0:
-        raise CheckError(f"{path}: no <AppendedData> section (expected a VTU written by dcfm)")
-    tag_end = raw.index(b">", marker)
-    encoding = "base64" if b'encoding="base64"' in raw[marker:tag_end] else "raw"
-    start = raw.index(b"_", tag_end) + 1
+    """The named arrays (`Points`, cell arrays, point and cell fields) of a VTU file as dcfm
+    writes it (reports/dcfm_vtu.py for the layouts), each of shape (n, components)."""
     try:
-        root = ET.fromstring(_close_open_tags(raw[:marker].decode("utf-8")))
-    except (ET.ParseError, UnicodeDecodeError) as e:
-        raise CheckError(f"{path}: unreadable XML header: {e}") from e
-    compressed = root.get("compressor") is not None
-    types = {"Float64": "<f8", "Float32": "<f4", "Int64": "<i8", "Int32": "<i4", "UInt8": "u1", "UInt64": "<u8"}
-    out: dict[str, np.ndarray] = {}
-    for arr in root.iter("DataArray"):
-        name = arr.get("Name")
-        if name not in names:
-            continue
-        if arr.get("format") != "appended":
-            raise CheckError(f"{path}: array '{name}' is not in the appended section")
-        dtype = types.get(arr.get("type", ""))
-        if dtype is None:
-            raise CheckError(f"{path}: array '{name}' has unsupported type {arr.get('type')}")
-        off = start + int(arr.get("offset", "0"))
-        try:
-            if encoding == "base64":
-                nbytes = int(np.frombuffer(base64.b64decode(raw[off : off + 12])[:8], "<u8")[0])
-                length = 4 * ((8 + nbytes + 2) // 3)
-                payload = base64.b64decode(raw[off : off + length])[8 : 8 + nbytes]
-            elif compressed:
-                nblocks = int(np.frombuffer(raw, "<u8", 1, off)[0])
-                sizes = np.frombuffer(raw, "<u8", nblocks, off + 24)
-                pos = off + 24 + 8 * nblocks
-                blocks = []
-                for size in sizes:
-                    blocks.append(zlib.decompress(raw[pos : pos + int(size)]))
-                    pos += int(size)
-                payload = b"".join(blocks)
-            else:
-                nbytes = int(np.frombuffer(raw, "<u8", 1, off)[0])
-                payload = raw[off + 8 : off + 8 + nbytes]
-        except (ValueError, zlib.error, binascii.Error) as e:
-            raise CheckError(f"{path}: array '{name}' cannot be decoded: {e}") from e
-        ncomp = int(arr.get("NumberOfComponents", "1"))
-        out[name] = np.frombuffer(payload, dtype).reshape(-1, ncomp)
-    missing = [n for n in names if n not in out]
+        grid = dcfm_vtu.read_vtu(path)
+    except dcfm_vtu.VtuError as e:
+        raise CheckError(str(e)) from e
+    missing = [n for n in names if n != "Points" and n not in grid.cells and n not in grid.point_data
+               and n not in grid.cell_data]
     if missing:
         raise CheckError(f"{path}: missing arrays {missing}")
-    return out
-
-
-def _close_open_tags(text: str) -> str:
-    """Close the elements still open where the appended data begins."""
-    stack: list[str] = []
-    for piece in text.split("<")[1:]:
-        if piece.startswith("?") or piece.startswith("!"):
-            continue
-        tag = piece.split(">", 1)[0]
-        if tag.startswith("/"):
-            if stack:
-                stack.pop()
-        elif not tag.rstrip().endswith("/"):
-            stack.append(tag.split()[0])
-    return text + "".join(f"</{t}>" for t in reversed(stack))
+    return {n: grid.array(n) for n in names}
 
 
 def read_pvd(path: Path) -> list[tuple[float, Path]]:
-    """(time, file) of every frame of a PVD collection."""
+    """(time, file) of every frame of a PVD collection, in time order."""
     try:
-        root = ET.parse(path).getroot()
-    except (OSError, ET.ParseError) as e:
-        raise CheckError(f"{path}: {e}") from e
-    return [(float(d.get("timestep", "nan")), path.parent / d.get("file", "")) for d in root.iter("DataSet")]
+        return dcfm_vtu.read_pvd(path)
+    except dcfm_vtu.VtuError as e:
+        raise CheckError(str(e)) from e
 
 
 def read_histories(path: Path) -> dict[str, np.ndarray]:
@@ -384,7 +323,17 @@ def damage_checks(frames: list[tuple[float, Path]], case: dict[str, Any], steps:
             cc = kc * m.fc0 * (1.0 + m.ac * dc_[sel])
             eff = lf.effective_stress(f["stress"][sel], dt_[sel], dc_[sel], m.s0) - _elastic_increment(m, deps[sel])
             rel = lf.yield_function(eff, ct, cc, m.alpha, m.gamma) / (kc * m.fc0)
-            for kind, mask in (("undamaged", undamaged), ("damaged", ~undamaged if mesh.one_point(int(r)) else None)):
+            # σ̄ of a damaged element is reconstructed from eq. (24), the "lee_fenves" recovery;
+            # the "consistent" rule's σ(σ̄, D) is not inverted here, and an undamaged element's
+            # σ̄ = σ under either rule.
+            damaged = None
+            if mesh.one_point(int(r)):
+                if m.recovery != "lee_fenves" and np.any(~undamaged):
+                    raise CheckError(f"{mesh.where}: region '{mesh.regions[int(r)]['name']}' (one-point) uses "
+                                     f"recovery = {m.recovery!r}: the damaged-element check inverts eq. (24) "
+                                     "('lee_fenves') only")
+                damaged = ~undamaged
+            for kind, mask in (("undamaged", undamaged), ("damaged", damaged)):
                 if mask is None or not np.any(mask):
                     continue
                 counted[kind] += int(np.sum(mask))

@@ -35,8 +35,6 @@ but pip does not have (docs/yingxiuwan.md).
 from __future__ import annotations
 
 import argparse
-import base64
-import binascii
 import csv
 import json
 import os
@@ -44,13 +42,13 @@ import re
 import sys
 import tempfile
 import time
-import xml.etree.ElementTree as ET
-import zlib
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
 
 import numpy as np
+
+import dcfm_vtu
 
 # Paper's values (Yang, Chen & Xiao 2014, §4.6.1).
 PAPER = {"before": 63.2, "onset": 2.6, "end": 460.3, "strong": [(2.6, 20.0), (30.0, 40.0)]}
@@ -112,147 +110,22 @@ class Frame:
         return np.arange(len(self.cells), dtype=np.int64)
 
 
-_TYPES = {"Float64": "<f8", "Float32": "<f4", "Int64": "<i8", "Int32": "<i4", "UInt8": "u1", "UInt64": "<u8", "Int8": "i1"}
-
-
 def read_vtu(path: Path) -> Frame:
-    """A VTK XML UnstructuredGrid of hex8 cells as dcfm writes it (docs/outputs.md):
-    appended base64 (one stream per array: a UInt64 byte count, then the values), raw
-    appended (plain or zlib-compressed blocks, the compact frames) or inline ASCII arrays."""
+    """A VTU frame of hex8 cells as dcfm writes it (reports/dcfm_vtu.py for the layouts)."""
     try:
-        raw = path.read_bytes()
-    except OSError as e:
-        raise PostError(f"{path}: cannot read: {e}") from e
-    marker = raw.find(b"<AppendedData")
-    head = raw if marker < 0 else raw[:marker]
-    try:
-        root = ET.fromstring(_close_open_tags(head.decode("utf-8")))
-    except (ET.ParseError, UnicodeDecodeError) as e:
-        raise PostError(f"{path}: unreadable XML header: {e}") from e
-    if root.tag != "VTKFile" or root.get("type") != "UnstructuredGrid":
-        raise PostError(f"{path}: not a VTK UnstructuredGrid file (root <{root.tag} type={root.get('type')!r}>)")
-    if root.get("byte_order", "LittleEndian") != "LittleEndian":
-        raise PostError(f"{path}: byte_order {root.get('byte_order')!r}, expected LittleEndian")
-    if root.get("header_type", "UInt32") != "UInt64" and marker >= 0:
-        raise PostError(f"{path}: header_type {root.get('header_type')!r}, expected UInt64 (dcfm's)")
-    compressed = root.get("compressor") is not None
-    start, encoding = -1, None
-    if marker >= 0:
-        tag_end = raw.index(b">", marker)
-        encoding = "base64" if b'encoding="base64"' in raw[marker:tag_end] else "raw"
-        start = raw.index(b"_", tag_end) + 1
-
-    def values(arr: ET.Element, where: str) -> np.ndarray:
-        name = arr.get("Name")
-        dtype = _TYPES.get(arr.get("type", ""))
-        if dtype is None:
-            raise PostError(f"{path}: {where} array '{name}': unsupported type {arr.get('type')!r}")
-        ncomp = int(arr.get("NumberOfComponents", "1"))
-        fmt = arr.get("format")
-        try:
-            if fmt == "ascii":
-                data = np.array((arr.text or "").split(), dtype=dtype)
-            elif fmt == "appended" and start >= 0:
-                off = start + int(arr.get("offset", "0"))
-                if encoding == "base64":
-                    nbytes = int(np.frombuffer(base64.b64decode(raw[off : off + 12])[:8], "<u8")[0])
-                    length = 4 * ((8 + nbytes + 2) // 3)
-                    payload = base64.b64decode(raw[off : off + length])[8 : 8 + nbytes]
-                elif compressed:
-                    nblocks = int(np.frombuffer(raw, "<u8", 1, off)[0])
-                    sizes = np.frombuffer(raw, "<u8", nblocks, off + 24)
-                    pos = off + 24 + 8 * nblocks
-                    blocks = []
-                    for size in sizes:
-                        blocks.append(zlib.decompress(raw[pos : pos + int(size)]))
-                        pos += int(size)
-                    payload = b"".join(blocks)
-                else:
-                    nbytes = int(np.frombuffer(raw, "<u8", 1, off)[0])
-                    payload = raw[off + 8 : off + 8 + nbytes]
-                data = np.frombuffer(payload, dtype)
-            else:
-                raise PostError(f"{path}: {where} array '{name}': format {fmt!r} (expected ascii or appended)")
-        except (ValueError, zlib.error, binascii.Error, IndexError) as e:
-            raise PostError(f"{path}: {where} array '{name}' cannot be decoded: {e}") from e
-        if data.size % ncomp:
-            raise PostError(f"{path}: {where} array '{name}': {data.size} values for {ncomp} components")
-        return data.reshape(-1, ncomp)
-
-    piece = root.find("UnstructuredGrid/Piece")
-    if piece is None:
-        raise PostError(f"{path}: no <UnstructuredGrid><Piece>")
-    n_points, n_cells = int(piece.get("NumberOfPoints", "-1")), int(piece.get("NumberOfCells", "-1"))
-
-    def arrays(section: str, expected: int) -> dict[str, np.ndarray]:
-        out = {}
-        for arr in piece.findall(f"{section}/DataArray"):
-            a = values(arr, section)
-            if len(a) != expected:
-                raise PostError(f"{path}: {section} array '{arr.get('Name')}': {len(a)} tuples, expected {expected}")
-            out[arr.get("Name", "")] = a
-        return out
-
-    pts = arrays("Points", n_points)
-    cells = {a.get("Name"): values(a, "Cells") for a in piece.findall("Cells/DataArray")}
-    if len(pts) != 1:
-        raise PostError(f"{path}: expected one <Points> array, found {len(pts)}")
-    points = next(iter(pts.values()))
-    if points.shape[1] != 3:
-        raise PostError(f"{path}: points have {points.shape[1]} components, expected 3")
-    for k in ("connectivity", "offsets", "types"):
-        if k not in cells:
-            raise PostError(f"{path}: <Cells> has no '{k}' array")
-    types = cells["types"][:, 0]
-    if len(types) != n_cells or np.any(types != 12):
-        bad = sorted(set(types.tolist()) - {12})
-        raise PostError(f"{path}: cells must be {n_cells} hex8 (VTK type 12), found {len(types)} with types {bad or [12]}")
-    offsets = cells["offsets"][:, 0].astype(np.int64)
-    if not np.array_equal(offsets, 8 * np.arange(1, n_cells + 1)):
-        raise PostError(f"{path}: cell offsets are not those of hex8 cells (8, 16, …)")
-    conn = cells["connectivity"][:, 0].astype(np.int64).reshape(n_cells, 8)
-    if conn.size and (conn.min() < 0 or conn.max() >= n_points):
-        raise PostError(f"{path}: connectivity refers to point {int(conn.max())} of {n_points}")
-    names: list[str] = []
-    for arr in root.iter("Array"):
-        if arr.get("Name") == "region_names":
-            codes = [int(c) for c in (arr.text or "").split()]
-            names = bytes(codes).decode("utf-8").split("\0")[:-1]
-    return Frame(path, points.astype(float), conn, arrays("PointData", n_points), arrays("CellData", n_cells), names)
-
-
-def _close_open_tags(text: str) -> str:
-    """Close the elements still open where the appended data begins."""
-    stack: list[str] = []
-    for piece in text.split("<")[1:]:
-        if piece.startswith("?") or piece.startswith("!"):
-            continue
-        tag = piece.split(">", 1)[0]
-        if tag.startswith("/"):
-            if stack:
-                stack.pop()
-        elif not tag.rstrip().endswith("/"):
-            stack.append(tag.split()[0])
-    return text + "".join(f"</{t}>" for t in reversed(stack))
+        grid = dcfm_vtu.read_vtu(path)
+        cells = grid.hex8()
+    except dcfm_vtu.VtuError as e:
+        raise PostError(str(e)) from e
+    return Frame(path, grid.points.astype(float), cells, grid.point_data, grid.cell_data, grid.region_names)
 
 
 def read_pvd(path: Path) -> list[tuple[float, Path]]:
     """(time, file) of every frame of a PVD collection, in time order."""
-    if not path.exists():
-        raise PostError(f"{path}: missing (was the case run?)")
     try:
-        root = ET.parse(path).getroot()
-    except ET.ParseError as e:
-        raise PostError(f"{path}: unreadable XML: {e}") from e
-    out = []
-    for ds in root.iter("DataSet"):
-        try:
-            out.append((float(ds.attrib["timestep"]), path.parent / ds.attrib["file"]))
-        except (KeyError, ValueError) as e:
-            raise PostError(f"{path}: DataSet {ds.attrib}: needs a numeric timestep and a file ({e})") from e
-    if not out:
-        raise PostError(f"{path}: no frame")
-    return sorted(out, key=lambda x: x[0])
+        return dcfm_vtu.read_pvd(path)
+    except dcfm_vtu.VtuError as e:
+        raise PostError(str(e)) from e
 
 
 def hex8_volumes(points: np.ndarray, cells: np.ndarray) -> np.ndarray:

@@ -92,6 +92,9 @@ def write_vtu(path: Path, points: dict[str, np.ndarray], cells: dict[str, np.nda
         offset += len(blob)
         return text
 
+    if "types" not in geometry:  # dcfm writes the VTK type of every cell: hex8 12, line 3
+        sizes = np.diff(np.concatenate([[0], np.asarray(geometry["offsets"]).ravel()]))
+        geometry = {**geometry, "types": np.where(sizes == 8, 12, 3).astype(np.int64)}
     pd = "".join(decl(k, v) for k, v in points.items())
     cd = "".join(decl(k, v) for k, v in cells.items())
     pts = "".join(decl(k, v) for k, v in geometry.items() if k == "Points")
@@ -256,3 +259,38 @@ def test_the_update_stress_is_one_elastic_increment_before_the_frame(tmp_path):
                   {"Points": frame["Points"], "connectivity": frame["connectivity"].reshape(-1), "offsets": frame["offsets"]})
         got = {c["name"]: c for c in yc.run_checks(run, case)}["undamaged elements inside the initial yield surface"]
         assert got["passed"] is (not broken), got
+
+
+def test_consistent_recovery_of_the_full_integration_concrete_is_checked(tmp_path):
+    """The undamaged-element check needs no recovery rule (σ̄ = σ where D = 0): a case whose
+    concrete (full integration, never damaged here) uses `recovery = "consistent"` is
+    checked and passes; the same run with an overstressed concrete element still fails."""
+    run, case = make_run(tmp_path)
+    case.write_text(CONSISTENT_CONCRETE, encoding="utf-8")
+    assert failed(run, case) == set()
+    (tmp_path / "over").mkdir()
+    run2, case2 = make_run(tmp_path / "over", undamaged_stress=1.001)
+    case2.write_text(CONSISTENT_CONCRETE, encoding="utf-8")
+    assert failed(run2, case2) == {"undamaged elements inside the initial yield surface"}
+
+
+def test_consistent_recovery_of_a_damaged_one_point_region_is_refused_by_name(tmp_path):
+    run, case = make_run(tmp_path)
+    case.write_text(CASE.replace("friction_angle_deg = 41.6\n", 'friction_angle_deg = 41.6\nrecovery = "consistent"\n', 1),
+                    encoding="utf-8")
+    with pytest.raises(yc.CheckError, match=r"region 'rock' \(one-point\) uses recovery = 'consistent'"):
+        yc.run_checks(run, case)
+
+
+CONSISTENT_CONCRETE = CASE.replace("[materials.concrete.plastic_damage]\n",
+                                   '[materials.concrete.plastic_damage]\nrecovery = "consistent"\n', 1)
+
+
+def test_a_name_that_is_a_point_and_a_cell_field_reads_as_the_cell_field(tmp_path):
+    """dcfm writes `active` both per node and per element; the checks mean the element's."""
+    path = tmp_path / "both.vtu"
+    write_vtu(path, {"active": np.ones(12)}, {"active": np.array([1.0, 0.0])},
+              {"Points": POINTS, "connectivity": CONN.reshape(-1), "offsets": np.array([8, 16])})
+    got = yc.read_vtu(path, ["active", "connectivity"])
+    assert got["active"][:, 0].tolist() == [1.0, 0.0]
+    assert got["connectivity"].shape == (16, 1)

@@ -72,14 +72,16 @@ pub struct PlasticDamageParams {
     /// d_c = b_c, i.e. 1 − (1 + a_c)/(2 a_c) (0.404 for W10's a_c = 5.224).
     #[serde(default)]
     pub dc_peak: Option<f64>,
-    /// Crack-band regularisation: `"total"` (default; the total work to separation per
-    /// crack area is G, strengths reduced in elements too large for that) or `"plastic"`
-    /// (Lee & Fenves 1998: ∫f dε̃ᵖ = G/l). See `docs/plastic_damage.md` §1.
+    /// Crack-band regularisation: `"plastic"` (default; Lee & Fenves 1998: ∫f dε̃ᵖ = G/l)
+    /// or `"total"` (the total work to separation per crack area is G, strengths reduced in
+    /// elements too large for that; recommended for large elements). See
+    /// `docs/plastic_damage.md` §1 and §4.
     #[serde(default)]
     pub regularisation: Regularisation,
-    /// Stiffness recovery on crack closure: `"consistent"` (default; from a Gibbs energy, no
-    /// energy created on any cycle) or `"lee_fenves"` (eq. 24 with s(σ̄)). See
-    /// `docs/plastic_damage.md` §1.
+    /// Stiffness recovery on crack closure: `"lee_fenves"` (default; eq. 24 with s(σ̄), the
+    /// paper's model, which can return energy on closing-crack cycles) or `"consistent"`
+    /// (from a Gibbs energy, no energy created on any cycle). See `docs/plastic_damage.md`
+    /// §1 and §7.
     #[serde(default)]
     pub recovery: Recovery,
 }

@@ -312,6 +312,9 @@ density = 2450.0
 ft0 = 1.30e6
 cohesion = 2.0e6
 friction_angle_deg = 46.0
+# The consistent stiffness recovery (docs/plastic_damage.md §7): with eq. (24)'s rule the
+# cracked lining self-excites with no input at all (docs/yingxiuwan.md, status).
+recovery = "consistent"
 "#,
         vtu = spec.timing.vtu_every,
         ckpt = spec.timing.checkpoint_every,

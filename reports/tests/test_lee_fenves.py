@@ -15,27 +15,10 @@ sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
 
 import lee_fenves as lf  # noqa: E402
 
-TABLE1 = """
-[materials.rock]
-model = "plastic_damage"
-young = 10.0e9
-poisson = 0.25
-[materials.rock.plastic_damage]
-ft0 = 1.97e6
-cohesion = 2.18e6
-friction_angle_deg = 41.6
-regularisation = "total"
+sys.path.insert(0, str(Path(__file__).resolve().parent))
+import table1  # noqa: E402
 
-[materials.concrete]
-model = "plastic_damage"
-young = 25.0e9
-poisson = 0.17
-[materials.concrete.plastic_damage]
-ft0 = 1.30e6
-cohesion = 2.0e6
-friction_angle_deg = 46.0
-regularisation = "total"
-"""
+TABLE1 = table1.materials("total")
 
 
 def test_table1_mapping_matches_the_documented_values():

@@ -18,11 +18,14 @@ import pytest
 
 REPORTS = Path(__file__).resolve().parents[1]
 sys.path.insert(0, str(REPORTS))
+sys.path.insert(0, str(REPORTS / "tests"))
 
 import lee_fenves as lf  # noqa: E402
+import table1  # noqa: E402
 import yingxiuwan_checks as yc  # noqa: E402
 
-CASE = """
+CASE = (
+    """
 [[regions]]
 name = "rock"
 material = "rock"
@@ -33,23 +36,9 @@ name = "lining"
 material = "concrete"
 integration = "full"
 
-[materials.rock]
-model = "plastic_damage"
-young = 10.0e9
-poisson = 0.25
-[materials.rock.plastic_damage]
-ft0 = 1.97e6
-cohesion = 2.18e6
-friction_angle_deg = 41.6
-
-[materials.concrete]
-model = "plastic_damage"
-young = 25.0e9
-poisson = 0.17
-[materials.concrete.plastic_damage]
-ft0 = 1.30e6
-fc = 9.9e6
-
+"""
+    + table1.materials()
+    + """
 [[interfaces]]
 name = "lr"
 
@@ -58,6 +47,7 @@ name = "bolts"
 diameter = 0.025
 yield_stress = 335e6
 """
+)
 YIELD = 335e6 * np.pi * 0.025**2 / 4
 EA = 200e9 * np.pi * 0.025**2 / 4
 FT_ROCK, FT_CONCRETE = 1.97e6, 1.30e6

@@ -14,36 +14,16 @@ use dcfm_app::run::{run_case, RunOptions, RunSummary};
 /// A block fixed at its base whose top starts at 1 m/s and whose motion dies out under
 /// mass-proportional damping: its peaks come early, before the checkpoints a run resumes
 /// from.
-const DECAYING: &str = r#"
-title = "decaying"
-[time]
-end = 0.004
-[output]
-vtu_every = 5
-checkpoint_every = 4
-[mesh]
-[[mesh.blocks]]
-name = "b"
-origin = [0.0, 0.0, 0.0]
-size = [2.0, 2.0, 2.0]
-divisions = [2, 2, 2]
-[materials.rock]
-model = "elastic"
-young = 20e9
-poisson = 0.25
-density = 2700.0
-[[regions]]
-name = "b"
-material = "rock"
-[[boundary.fixed]]
-set = "b.zmin"
-dofs = "xyz"
-[[initial.velocity]]
-set = "b.zmax"
-value = [1.0, 0.0, 0.0]
-[damping]
-alpha = 1000.0
-"#;
+fn decaying() -> String {
+    common::elastic_block(
+        "decaying",
+        "0.004",
+        2.0,
+        "[output]\nvtu_every = 5\ncheckpoint_every = 4\n\
+         [[initial.velocity]]\nset = \"b.zmax\"\nvalue = [1.0, 0.0, 0.0]\n\
+         [damping]\nalpha = 1000.0\n",
+    )
+}
 
 fn dir(name: &str) -> PathBuf {
     common::fresh_dir("folder", name)
@@ -66,8 +46,12 @@ fn run(text: &str, out: &Path, resume: bool) -> RunSummary {
 /// is written off the step grid), and its last frame is one that the full run's schedule
 /// (every 5 steps) does not have.
 fn interrupted(out: &Path) -> RunSummary {
-    run(&DECAYING.replace("end = 0.004", "end = 0.0016"), out, false);
-    run(DECAYING, out, true)
+    run(
+        &decaying().replace("end = 0.004", "end = 0.0016"),
+        out,
+        false,
+    );
+    run(&decaying(), out, true)
 }
 
 /// (listed frames, mesh_*.vtu files in the folder).
@@ -89,7 +73,7 @@ fn frames(out: &Path) -> (Vec<String>, BTreeSet<String>) {
 #[test]
 fn peaks_of_a_resumed_run_are_those_of_the_whole_run() {
     let root = dir("peaks");
-    let full = run(DECAYING, &root.join("full"), false);
+    let full = run(&decaying(), &root.join("full"), false);
     let resumed = interrupted(&root.join("part"));
     let restart = resumed.resumed_from_step.expect("resumed") as f64 * resumed.dt;
     // The test means something only when the peaks come before the restart.
@@ -107,7 +91,7 @@ fn peaks_of_a_resumed_run_are_those_of_the_whole_run() {
 #[test]
 fn a_resumed_run_lists_exactly_the_frames_of_an_uninterrupted_run() {
     let root = dir("resume-frames");
-    run(DECAYING, &root.join("full"), false);
+    run(&decaying(), &root.join("full"), false);
     interrupted(&root.join("part"));
     let (full_listed, full_files) = frames(&root.join("full"));
     let (part_listed, part_files) = frames(&root.join("part"));
@@ -124,7 +108,7 @@ fn a_rerun_in_a_used_folder_leaves_only_its_own_frames() {
     let out = root.join("out");
     // An earlier, longer run with frames at other steps, and a write killed midway.
     run(
-        &DECAYING
+        &decaying()
             .replace("end = 0.004", "end = 0.006")
             .replace("vtu_every = 5", "vtu_every = 3"),
         &out,
@@ -132,7 +116,7 @@ fn a_rerun_in_a_used_folder_leaves_only_its_own_frames() {
     );
     let killed = out.join(".case.pvd.4000000.7.tmp");
     std::fs::write(&killed, b"half").unwrap();
-    run(DECAYING, &out, false);
+    run(&decaying(), &out, false);
     let (listed, files) = frames(&out);
     assert_eq!(files, listed.iter().cloned().collect(), "{files:?}");
     assert!(listed.contains(&"mesh_000005.vtu".to_string()));

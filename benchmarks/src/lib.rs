@@ -17,6 +17,7 @@ pub mod cube;
 pub mod error;
 pub mod git;
 pub mod history;
+pub mod machine;
 pub mod memory;
 pub mod record;
 pub mod runner;

@@ -54,6 +54,13 @@ pub struct ThroughputRecord {
     /// Logical CPUs the machine offered (for comparing records across machines).
     #[serde(default)]
     pub cpus: usize,
+    /// Logical CPUs of the whole machine, when more than `cpus` were there but the process
+    /// was confined to fewer (`taskset`). Absent where they are the same or unknown.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub machine_cpus: Option<usize>,
+    /// The CPU model (`/proc/cpuinfo`), to tell machines apart. Absent where unknown.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cpu_model: Option<String>,
     /// CPU seconds the process used during the timed steps over (wall_s × threads): about 1
     /// on an otherwise idle machine, lower when other processes took the cores (the
     /// throughput is then understated). Absent where the CPU time cannot be read.

@@ -248,6 +248,8 @@ pub fn run(
     }
     let commit = git::commit_label(&history::workspace_root());
     let cpus = std::thread::available_parallelism().map_or(1, |n| n.get());
+    let machine_cpus = crate::machine::machine_cpus().filter(|&n| n > cpus);
+    let cpu_model = crate::machine::cpu_model();
     let profile = if cfg!(debug_assertions) {
         "debug"
     } else {
@@ -291,6 +293,8 @@ pub fn run(
                 commit: commit.clone(),
                 timestamp: timestamp::utc_now(),
                 cpus,
+                machine_cpus,
+                cpu_model: cpu_model.clone(),
                 cpu_share: timing.cpu_s.map(|c| c / (wall_s * threads as f64)),
                 mode: config.mode.clone(),
                 contact_share,
@@ -332,6 +336,8 @@ pub fn run(
             commit: commit.clone(),
             timestamp: timestamp::utc_now(),
             cpus,
+            machine_cpus,
+            cpu_model: cpu_model.clone(),
             cpu_share: cpu_s.map(|c| c / (wall_s.max(1e-9) * threads as f64)),
             mode: config.mode.clone(),
             contact_share: None,

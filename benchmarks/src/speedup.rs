@@ -83,6 +83,8 @@ mod tests {
             commit: "unknown".into(),
             timestamp: String::new(),
             cpus: 2,
+            machine_cpus: None,
+            cpu_model: None,
             cpu_share: None,
             contact_share: None,
             mode: "quick".into(),

@@ -258,23 +258,37 @@ pub fn run(
     let mut records = Vec::new();
     for spec in cases {
         let reset = memory::reset_peak_rss();
-        let mut sim = spec.simulation()?;
+        let mut first = Some(spec.simulation()?);
         let warmup = config.warmup_steps.unwrap_or(spec.divisions as u64 + 5);
-        let bytes_per_element = sim.model.bytes_per_element();
-        let nodes = sim.model.mesh.n_nodes();
+        let (bytes_per_element, nodes) = first
+            .as_ref()
+            .map(|s| (s.model.bytes_per_element(), s.model.mesh.n_nodes()))
+            .unwrap_or_default();
+        // Every thread count times the same steps from the same state: a fresh copy of the
+        // case, the same warm-up, then the number of steps the first thread count reached
+        // in `min_wall_s`. Timing the thread counts one after the other on one simulation
+        // compared different stretches of the motion, and in the damaging regime the cost
+        // of a step grows as the damage spreads.
+        let mut same_steps: Option<u64> = None;
         for &threads in &config.threads {
+            let mut sim = match first.take() {
+                Some(sim) => sim,
+                None => spec.simulation()?,
+            };
             let pool = rayon::ThreadPoolBuilder::new()
                 .num_threads(threads)
                 .build()?;
-            let timing = pool.install(|| {
-                time_steps(
-                    &mut sim,
-                    warmup,
+            let (min_wall, min_steps, max_steps) = match same_steps {
+                None => (
                     Duration::from_secs_f64(config.min_wall_s),
                     config.min_steps,
                     config.max_steps,
-                )
-            })?;
+                ),
+                Some(n) => (Duration::ZERO, n, n),
+            };
+            let timing =
+                pool.install(|| time_steps(&mut sim, warmup, min_wall, min_steps, max_steps))?;
+            same_steps.get_or_insert(timing.steps);
             let wall_s = timing.wall.as_secs_f64().max(1e-9);
             let contact_share = spec.interface.then(|| timing.contact_s / wall_s);
             let steps_per_s = timing.steps as f64 / wall_s;

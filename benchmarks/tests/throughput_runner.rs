@@ -145,6 +145,11 @@ fn quick_run_records_every_key_with_sane_values() {
     .expect("quick run");
     assert_eq!(records.len(), 4, "2 integrations x 2 thread counts");
     assert_eq!(printed.len(), records.len());
+    // Both thread counts time the same steps of the same motion.
+    for pair in records.chunks(2) {
+        assert_eq!(pair[0].case, pair[1].case);
+        assert_eq!(pair[0].steps, pair[1].steps, "{}", pair[0].case);
+    }
 
     for (r, line) in records.iter().zip(&printed) {
         let v: serde_json::Value = serde_json::from_str(line).expect("each printed line is JSON");

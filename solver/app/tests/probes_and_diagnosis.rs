@@ -190,6 +190,16 @@ fn bad_probes_are_refused_at_their_field() {
             "letters, digits",
         ),
         (
+            "[[output.element_probes]]\nname = \"x\"\nelement = 0\nset = \"b\"",
+            "output.element_probes[0]",
+            "exactly one of at = [x, y, z], element = ID",
+        ),
+        (
+            "[[output.element_probes]]\nname = \"x\"\nelement = 0\nreduce = \"mean\"",
+            "output.element_probes[0].reduce",
+            "only with set",
+        ),
+        (
             "[[output.element_probes]]\nname = \"x\"\nat = [0.0, 0.0, -1.0]",
             "output.element_probes[0].at",
             "inside the model",

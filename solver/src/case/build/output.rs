@@ -119,22 +119,7 @@ fn resolve_probes(model: &Model, section: &OutputSection, label: &str) -> Result
         check_name(&p.name, &field, label)?;
         claim_name(&p.name, &field)?;
         let given = [p.at.is_some(), p.node.is_some(), p.set.is_some()];
-        if given.iter().filter(|&&g| g).count() != 1 {
-            return Err(DcfmError::invalid(
-                label,
-                &field,
-                format!("\"{}\"", p.name),
-                "exactly one of at = [x, y, z], node = ID, set = \"NAME\"",
-            ));
-        }
-        if p.reduce == ProbeReduce::Mean && p.set.is_none() {
-            return Err(DcfmError::invalid(
-                label,
-                format!("{field}.reduce"),
-                "\"mean\"",
-                "only with set = \"NAME\"",
-            ));
-        }
+        check_probe_form(label, &field, &p.name, given, "node", p.reduce)?;
         let single = |node: u32, found: String| NodeProbe {
             label: p.name.clone(),
             nodes: vec![node],
@@ -267,22 +252,7 @@ fn resolve_probes(model: &Model, section: &OutputSection, label: &str) -> Result
         check_name(&p.name, &field, label)?;
         claim_name(&p.name, &field)?;
         let given = [p.at.is_some(), p.element.is_some(), p.set.is_some()];
-        if given.iter().filter(|&&g| g).count() != 1 {
-            return Err(DcfmError::invalid(
-                label,
-                &field,
-                format!("\"{}\"", p.name),
-                "exactly one of at = [x, y, z], element = ID, set = \"NAME\"",
-            ));
-        }
-        if p.reduce == ProbeReduce::Mean && p.set.is_none() {
-            return Err(DcfmError::invalid(
-                label,
-                format!("{field}.reduce"),
-                "\"mean\"",
-                "only with set = \"NAME\"",
-            ));
-        }
+        check_probe_form(label, &field, &p.name, given, "element", p.reduce)?;
         let (elements, mean, found) = if let Some(at) = p.at {
             let f = format!("{field}.at");
             finite_components(label, &f, &at, "m")?;
@@ -385,6 +355,35 @@ fn resolve_probes(model: &Model, section: &OutputSection, label: &str) -> Result
         });
     }
     Ok(probes)
+}
+
+/// A probe names exactly one of `at`, `<id_key>` (`node` or `element`) and `set` (`given`,
+/// in that order), and asks for `reduce = "mean"` only with a set.
+fn check_probe_form(
+    label: &str,
+    field: &str,
+    name: &str,
+    given: [bool; 3],
+    id_key: &str,
+    reduce: ProbeReduce,
+) -> Result<()> {
+    if given.iter().filter(|&&g| g).count() != 1 {
+        return Err(DcfmError::invalid(
+            label,
+            field,
+            format!("\"{name}\""),
+            format!("exactly one of at = [x, y, z], {id_key} = ID, set = \"NAME\""),
+        ));
+    }
+    if reduce == ProbeReduce::Mean && !given[2] {
+        return Err(DcfmError::invalid(
+            label,
+            format!("{field}.reduce"),
+            "\"mean\"",
+            "only with set = \"NAME\"",
+        ));
+    }
+    Ok(())
 }
 
 /// A probe name must make a plain column name.

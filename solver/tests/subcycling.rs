@@ -208,6 +208,12 @@ fn pulse_crosses_fine_coarse_boundary() {
 
 /// A 12 × 3 × 3 box with x-spacing from 0.5 to 4 m (y, z: 4 m) and random velocities.
 fn graded_box(max_level: Option<u8>) -> Simulation {
+    let elastic = Material::Elastic(Elastic::new("rock", YOUNG, 0.25, DENSITY).unwrap());
+    graded_box_of(elastic, 1.0, max_level)
+}
+
+/// [`graded_box`] of `material`, the random velocities scaled by `speed` (m/s).
+fn graded_box_of(material: Material, speed: f64, max_level: Option<u8>) -> Simulation {
     let xs = [0.5, 0.5, 0.5, 0.5, 1.0, 1.0, 2.0, 2.0, 4.0, 4.0, 4.0, 4.0];
     let n = xs.len();
     let mut mesh = BoxMeshSpec::single("rock", [0.0; 3], [n as f64, 12.0, 12.0], [n, 3, 3])
@@ -222,7 +228,7 @@ fn graded_box(max_level: Option<u8>) -> Simulation {
     }
     let setup = RegionSetup {
         region: "rock".to_string(),
-        material: Material::Elastic(Elastic::new("rock", YOUNG, 0.25, DENSITY).unwrap()),
+        material,
         integration: Integration::Full,
         hourglass: 0.05,
     };
@@ -237,13 +243,75 @@ fn graded_box(max_level: Option<u8>) -> Simulation {
         (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
     };
     for v in sim.v.iter_mut() {
-        *v = [rand(), rand(), rand()];
+        *v = [speed * rand(), speed * rand(), speed * rand()];
     }
     sim.restart_energy_account();
     if let Some(l) = max_level {
         sim.enable_subcycling(l, 0.9).unwrap();
     }
     sim
+}
+
+/// Plastic-damage elements commit their state only when evaluated: the hardening
+/// variables κ_t, κ_c (irreversible, never decreasing) of every element never decrease
+/// from one fine step to the next, while the coarse elements (4 m, computed every 4 steps)
+/// do damage. Committing the pending buffer of an element that was not evaluated (a plain
+/// swap) would bring back its state of an earlier evaluation and fail this.
+#[test]
+fn plastic_damage_states_commit_at_evaluations_only() {
+    use dcfm::material::plastic_damage::PlasticDamageParams;
+    use dcfm::material::PlasticDamage;
+    let elastic = Elastic::new("concrete", YOUNG, 0.25, DENSITY).unwrap();
+    let material = Material::PlasticDamage(Box::new(
+        PlasticDamage::new(
+            "concrete",
+            elastic,
+            &PlasticDamageParams::from_strengths(2.9e6, 13e6, 24.1e6, 200.0, 1e4),
+        )
+        .unwrap(),
+    ));
+    let mut sim = graded_box_of(material, 4.0, Some(3));
+    let s = sim.subcycling().unwrap().clone();
+    assert!(s.elements_per_level[2] > 0, "{s:?}");
+    let kappa = |sim: &Simulation| -> Vec<[f64; 2]> {
+        sim.model.groups[0]
+            .element_damage_fields()
+            .unwrap()
+            .iter()
+            .map(|f| [f[3], f[4]])
+            .collect()
+    };
+    let coarse: Vec<usize> = (0..sim.model.groups[0].len())
+        .filter(|&le| {
+            let e = sim.model.groups[0].elements[le] as usize;
+            sim.model
+                .mesh
+                .element_coords(e)
+                .iter()
+                .all(|x| x[0] >= 8.0 - 1e-9)
+        })
+        .collect();
+    let mut before = kappa(&sim);
+    for _ in 0..400 {
+        sim.step().unwrap();
+        let now = kappa(&sim);
+        for (le, (a, b)) in before.iter().zip(&now).enumerate() {
+            assert!(
+                b[0] >= a[0] && b[1] >= a[1],
+                "element {le}: kappa went from {a:?} to {b:?} at step {}",
+                sim.step
+            );
+        }
+        before = now;
+    }
+    let damaged = coarse
+        .iter()
+        .filter(|&&le| before[le][0] > 0.0 || before[le][1] > 0.0)
+        .count();
+    assert!(
+        damaged > 0,
+        "no coarse element yielded: the test does not test"
+    );
 }
 
 /// Σ ½ M V^{−}·V^{+} over every node's step around a synchronous step n, plus the exact

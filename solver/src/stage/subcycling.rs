@@ -11,8 +11,10 @@
 //!   element's own stable step (`Model::element_steps`, lowered for mass-proportional
 //!   damping α as in `Model::critical_step_with_damping`) and s the case's safety factor;
 //! * node i: L_i = min over its elements of L_e, forced to 0 at every node that is
-//!   constrained (fixed or prescribed), loaded, or on the boundary system (absorbing
-//!   boundaries, free-field coupling): those stay on the finest step;
+//!   constrained (fixed or prescribed), loaded, on a contact interface (every node of its
+//!   surfaces, `ContactSystem::surface_nodes`) or on the boundary system (absorbing
+//!   boundaries, free-field coupling): those stay on the finest step, and so do the
+//!   elements around them, so the contact solve sees only nodes stepping at Δt;
 //! * element e is evaluated with period 2^{m_e}, m_e = min over its nodes of L_i ≤ L_e,
 //!   so its own stable step is respected.
 //!
@@ -38,8 +40,8 @@
 //! every node holds (U^n, V^{n−½H}) and every material state is committed: a resumed run
 //! continues bit-identically. Shortened steps (`Simulation::step_to`) are not taken (the
 //! run ends on the first full step at or after its end, as with absorbing boundaries).
-//! Contact interfaces, anchor bars and stiffness-proportional damping β are refused by
-//! [`plan`] (not yet handled).
+//! Anchor bars and stiffness-proportional damping β are refused by [`plan`] (not yet
+//! handled).
 
 use serde::Serialize;
 
@@ -114,7 +116,7 @@ fn refuse(what: &str, max_level: u8) -> DcfmError {
 
 /// The levels of `model` stepped at `dt` with safety factor `safety` (module docs).
 /// `forced` marks the nodes held on the finest level besides the constrained and boundary
-/// nodes (the loaded ones). Refuses contact, anchors and stiffness-proportional damping.
+/// nodes (the loaded ones). Refuses anchors and stiffness-proportional damping.
 pub(crate) fn plan(
     model: &Model,
     dt: f64,
@@ -129,9 +131,6 @@ pub(crate) fn plan(
             max_level,
             format!("a whole number from 1 to {MAX_LEVEL}"),
         ));
-    }
-    if model.contact.is_some() {
-        return Err(refuse("contact interfaces", max_level));
     }
     if model.anchors.is_some() {
         return Err(refuse("anchor bars", max_level));
@@ -183,6 +182,11 @@ pub(crate) fn plan(
     }
     if let Some(b) = &model.boundaries {
         for &i in &b.nodes {
+            node_level[i as usize] = 0;
+        }
+    }
+    if let Some(c) = &model.contact {
+        for i in c.surface_nodes() {
             node_level[i as usize] = 0;
         }
     }

@@ -92,6 +92,51 @@ pub struct RunSummary {
     /// The probes of histories.csv and how each was found (node chosen for a point and
     /// its distance, the set of a mean).
     pub probes: Probes,
+    /// The levels of the multi-time-step integration (`time.subcycling`) and the element
+    /// evaluations it saves; absent without it. `element_updates_per_s` counts the
+    /// single-step equivalent (every element every step), so it includes the saving.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub subcycling: Option<dcfm::stage::subcycling::SubcyclingSummary>,
+}
+
+/// Turn on the case's subcycling (`time.subcycling`) for the dynamic stage: refused when
+/// checkpoints would fall between synchronous steps (`output.checkpoint_every` not a
+/// multiple of the cycle), or when resuming from a checkpoint written off the cycle (by
+/// a run without subcycling or with other levels).
+fn enable_subcycling(
+    sim: &mut Simulation,
+    max_level: u8,
+    safety: f64,
+    output: &OutputSection,
+    label: &str,
+) -> Result<()> {
+    sim.enable_subcycling(max_level, safety)
+        .map_err(|e| e.in_file(label))?;
+    let cycle = sim.cycle_steps();
+    if !output.checkpoint_every.is_multiple_of(cycle) {
+        return Err(DcfmError::invalid(
+            label,
+            "output.checkpoint_every",
+            output.checkpoint_every,
+            format!(
+                "a multiple of the subcycling cycle of {cycle} steps (time.subcycling: \
+                 checkpoints are written at synchronous steps only)"
+            ),
+        ));
+    }
+    if !sim.step.is_multiple_of(cycle) {
+        return Err(DcfmError::invalid(
+            label,
+            "time.subcycling",
+            format!("{{ max_level = {max_level} }}"),
+            format!(
+                "the setting the checkpoint was written with: it holds step {}, not a \
+                 multiple of the cycle of {cycle} steps",
+                sim.step
+            ),
+        ));
+    }
+    Ok(())
 }
 
 fn norm(x: &[f64; 3]) -> f64 {
@@ -711,6 +756,9 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
         read_checkpoint(&bytes[staged.dynamic_offset..], &ckpt_label, &mut sim).map_err(early)?;
         resumed_from = Some(sim.step);
     }
+    if let Some(max_level) = case.subcycling {
+        enable_subcycling(&mut sim, max_level, case.safety, &output, &label).map_err(early)?;
+    }
     let mut frames = match &output.frames {
         Some(f) => Some(
             crate::frames::CompactFrames::new(f, &sim, out, resumed_from.map(|_| sim.time))
@@ -897,6 +945,7 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
             .map_or((0, 0.0), |c| c.unsettled_joint_steps()),
         resumed_with_changes: changes,
         probes: columns.probes,
+        subcycling: sim.subcycling().cloned(),
     };
     write_summary(&out.join("summary.json"), &summary)?;
     outcome.map(|()| summary)

@@ -65,6 +65,10 @@ pub struct TimeSection {
     /// (default [`DEFAULT_MAX_STEPS`]).
     #[serde(default)]
     pub max_steps: Option<f64>,
+    /// Multi-time-step integration: `"off"` (default) or `{ max_level = N }`, N in 1..=7
+    /// (`stage::subcycling`); checked by `case::build::time::subcycling_level`.
+    #[serde(default)]
+    pub subcycling: Option<toml::Value>,
 }
 
 /// Default step budget of `[time] max_steps`.

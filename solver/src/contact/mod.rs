@@ -151,6 +151,25 @@ impl ContactSystem {
         self.interfaces.len()
     }
 
+    /// Every node that can take part in contact: the nodes of surface a, their partners
+    /// and the nodes of surface b's faces, ascending and unique (the nodes subcycling keeps
+    /// on the finest step, `stage::subcycling`).
+    pub fn surface_nodes(&self) -> Vec<u32> {
+        let mut nodes: Vec<u32> = Vec::new();
+        for iface in &self.interfaces {
+            for s in &iface.slaves {
+                nodes.push(s.node);
+                if s.partner != NONE {
+                    nodes.push(s.partner);
+                }
+            }
+            nodes.extend(iface.b_faces.iter().flatten().copied());
+        }
+        nodes.sort_unstable();
+        nodes.dedup();
+        nodes
+    }
+
     /// Nodes whose contact force the last [`compute`](Self::compute) wrote (sorted by first
     /// touch, unique).
     pub fn touched_nodes(&self) -> &[u32] {

@@ -88,13 +88,38 @@ impl<T> SharedMut<T> {
     }
 }
 
+/// Which elements a step of a subcycled run evaluates (`stage::subcycling`): element `le`
+/// of the group is due at fine step `step` when `step` is a multiple of 2^`level[le]`, and
+/// it is then evaluated with the step 2^`level[le]` Δt (its strain increment spans its
+/// whole period).
+#[derive(Clone, Copy, Debug)]
+pub struct Due<'a> {
+    /// The fine step n.
+    pub step: u64,
+    /// Period exponent m_e of each element of the group, in the group's order.
+    pub level: &'a [u8],
+    /// Smallest m_e of each colouring run of the group ([`ElementGroup::run_levels`]): a
+    /// run none of whose elements is due is skipped whole.
+    pub run_level: &'a [u8],
+}
+
+impl Due<'_> {
+    /// Whether a period 2^`level` falls on the fine step `step`.
+    #[inline(always)]
+    pub fn at(step: u64, level: u8) -> bool {
+        step & ((1u64 << level) - 1) == 0
+    }
+}
+
 /// Rayleigh stiffness-proportional damping coefficient and time step, passed to the kernels.
 #[derive(Clone, Copy, Debug)]
-pub struct ForceSettings {
+pub struct ForceSettings<'a> {
     /// β of C = αM + βK (s).
     pub beta: f64,
     /// Time step (s).
     pub dt: f64,
+    /// The elements due at this step of a subcycled run (`None`: every element).
+    pub due: Option<Due<'a>>,
 }
 
 impl ElementGroup {
@@ -215,7 +240,7 @@ impl ElementGroup {
         c: usize,
         u: &[[f64; 3]],
         v: &[[f64; 3]],
-        settings: ForceSettings,
+        settings: ForceSettings<'_>,
         f_int: &mut [[f64; 3]],
         f_damp: &mut [[f64; 3]],
     ) {
@@ -225,7 +250,7 @@ impl ElementGroup {
         if block_range.is_empty() {
             return;
         }
-        let blocks = &self.blocks[block_range];
+        let blocks = &self.blocks[block_range.clone()];
         let stride = self.states.stride() * self.integration.points();
         let (old, new) = self.states.split();
         let new_ptr = SharedMut(new.as_mut_ptr());
@@ -241,6 +266,7 @@ impl ElementGroup {
         let reference = self.reference.as_deref();
         let beta = settings.beta;
         let dt = settings.dt;
+        let due = settings.due;
         // Lane blocks: linear elastic, fully integrated, no initial strain (the material
         // update is the elastic stress and the state is empty).
         let lane_geometry = match (geometry, material, initial) {
@@ -285,7 +311,7 @@ impl ElementGroup {
                 }
             }
         };
-        let element = |le: usize| {
+        let element = |le: usize, dt: f64| {
             let nodes = &conn[le];
             let mut ue: [[f64; 3]; 8] = std::array::from_fn(|a| u[nodes[a] as usize]);
             if let Some(r) = reference {
@@ -366,10 +392,31 @@ impl ElementGroup {
                 }
             }
         };
+        if let Some(due) = due {
+            // Subcycled: only the due elements, each with its own period as its step; the
+            // runs keep their order, so the sums are those of the full pass restricted to
+            // the due elements.
+            let run_levels = &due.run_level[block_range];
+            blocks
+                .par_iter()
+                .zip(run_levels.par_iter())
+                .for_each(|(run, &min_level)| {
+                    if !Due::at(due.step, min_level) {
+                        return;
+                    }
+                    for le in run.clone() {
+                        let l = due.level[le];
+                        if Due::at(due.step, l) {
+                            element(le, dt * (1u64 << l) as f64);
+                        }
+                    }
+                });
+            return;
+        }
         match lane_geometry {
             None => blocks
                 .par_iter()
-                .for_each(|run| run.clone().for_each(element)),
+                .for_each(|run| run.clone().for_each(|le| element(le, dt))),
             // Whole lane blocks of a run in SIMD lanes, the rest element by element; the
             // forces are added in the group's order either way, so the sums are those of
             // the scalar path.
@@ -388,10 +435,30 @@ impl ElementGroup {
                         }
                         le += LANES;
                     }
-                    (le..run.end).for_each(element);
+                    (le..run.end).for_each(|le| element(le, dt));
                 })
             }),
         }
+    }
+
+    /// Smallest of `level` (one value per element, the group's order) over each colouring
+    /// run, in the order of the runs: the `run_level` of [`Due`].
+    pub fn run_levels(&self, level: &[u8]) -> Vec<u8> {
+        self.blocks
+            .iter()
+            .map(|run| run.clone().map(|le| level[le]).min().unwrap_or(0))
+            .collect()
+    }
+
+    /// Commit the material states of the elements evaluated at a subcycled step (`due`);
+    /// the others keep their committed state, which their pending buffer does not hold.
+    pub fn commit_due(&mut self, due: Due<'_>) {
+        let per = self.states.stride() * self.integration.points();
+        if per == 0 {
+            return;
+        }
+        self.states
+            .commit_elements(per, |le| Due::at(due.step, due.level[le]));
     }
 
     /// Volume-averaged strain and stress of the group's element `le` from displacements

@@ -53,6 +53,23 @@ impl PointStates {
         std::mem::swap(&mut self.old, &mut self.new);
     }
 
+    /// End of a step that updated only some elements (subcycling): the new state of
+    /// every element `le` (`per` values each) with `updated(le)` becomes its old one; the
+    /// other elements keep their old state (their new buffer is stale).
+    pub fn commit_elements(&mut self, per: usize, updated: impl Fn(usize) -> bool + Sync) {
+        use rayon::prelude::*;
+        self.old
+            .par_chunks_mut(per)
+            .zip(self.new.par_chunks(per))
+            .enumerate()
+            .with_min_len(256)
+            .for_each(|(le, (o, n))| {
+                if updated(le) {
+                    o.copy_from_slice(n);
+                }
+            });
+    }
+
     /// Replace the committed state (e.g. from a checkpoint); `values` has the same length.
     pub fn restore(&mut self, values: &[f64]) {
         self.old.copy_from_slice(values);

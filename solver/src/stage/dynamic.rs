@@ -29,6 +29,11 @@
 //! Fⁿ over the trapezoidal half-intervals ½Δt⁻ V^{n−½} and ½h V^{n+½}. Models with
 //! absorbing boundaries (centred dashpots and free-field grids prepared for Δt) take full
 //! steps only.
+//!
+//! With subcycling ([`Simulation::enable_subcycling`], `stage::subcycling`) a node of level
+//! L takes the step above with h = Δt⁻ = 2^L Δt at the fine steps n ≡ 0 (mod 2^L) and is
+//! interpolated linearly in between; the elements are evaluated only when one of their
+//! nodes updates.
 
 use rayon::prelude::*;
 
@@ -37,6 +42,7 @@ use crate::element::groups::ForceSettings;
 use crate::error::{DcfmError, Result};
 use crate::model::Model;
 use crate::stage::energy::{Energies, EnergyParts};
+use crate::stage::subcycling::{Subcycling, SubcyclingSummary};
 
 /// Nodes per chunk of the node loops: fixed, so that reductions are summed in the same
 /// order whatever the number of threads.
@@ -108,6 +114,8 @@ pub struct Simulation {
     last_step: f64,
     /// Every step so far was a full step: the time is `step` × Δt.
     on_grid: bool,
+    /// Multi-time-step integration, when enabled.
+    subcycling: Option<Subcycling>,
 }
 
 impl Simulation {
@@ -206,6 +214,7 @@ impl Simulation {
                 .fold(0.0, f64::max),
             last_step: dt,
             on_grid: true,
+            subcycling: None,
             model,
         }
     }
@@ -214,13 +223,55 @@ impl Simulation {
     /// absorbing boundaries, whose centred dashpots and free-field grids are prepared for
     /// Δt.
     pub fn can_shorten_steps(&self) -> bool {
-        self.model.boundaries.is_none()
+        self.model.boundaries.is_none() && self.subcycling.is_none()
+    }
+
+    /// Turn on multi-time-step integration with steps up to 2^`max_level` Δt
+    /// (`stage::subcycling`), `safety` the factor the case's Δt was chosen with. Only at
+    /// a synchronous state (every node at the same time: before the first step, or a
+    /// state restored from a checkpoint). Refuses (an error naming `time.subcycling`)
+    /// models with anchors or stiffness-proportional damping.
+    pub fn enable_subcycling(&mut self, max_level: u8, safety: f64) -> Result<&SubcyclingSummary> {
+        let mut s = crate::stage::subcycling::plan(
+            &self.model,
+            self.dt,
+            safety,
+            max_level,
+            &self.loaded_nodes,
+        )?;
+        s.u_end = self.u.clone();
+        self.subcycling = Some(s);
+        Ok(&self.subcycling.as_ref().expect("just set").summary)
+    }
+
+    /// The subcycling levels, when enabled.
+    pub fn subcycling(&self) -> Option<&SubcyclingSummary> {
+        self.subcycling.as_ref().map(|s| &s.summary)
+    }
+
+    /// Fine steps of one subcycling cycle (2^top, top the largest node level; 1 without
+    /// subcycling): the states at multiples of it are synchronous.
+    pub fn cycle_steps(&self) -> u64 {
+        self.subcycling.as_ref().map_or(1, |s| 1u64 << s.top)
+    }
+
+    /// Element evaluations per fine step, on average over a cycle (the number of
+    /// elements without subcycling).
+    pub fn element_updates_per_step(&self) -> f64 {
+        let n = self.model.n_elements() as f64;
+        self.subcycling
+            .as_ref()
+            .map_or(n, |s| n * s.summary.element_update_fraction)
     }
 
     /// Whether the state lies on the step grid (every step so far a full step, the time
     /// `step` × Δt): what a checkpoint can hold.
     pub fn on_grid(&self) -> bool {
         self.on_grid
+            && self
+                .subcycling
+                .as_ref()
+                .is_none_or(|s| s.synchronous(self.step))
     }
 
     /// Length of the last step taken (s): Δt, or the shortened step of
@@ -233,6 +284,9 @@ impl Simulation {
     pub(crate) fn restored_on_grid(&mut self) {
         self.on_grid = true;
         self.last_step = self.dt;
+        if let Some(s) = self.subcycling.as_mut() {
+            s.u_end.copy_from_slice(&self.u);
+        }
     }
 
     /// Start the energy account afresh from the current velocities (after they were set
@@ -262,9 +316,20 @@ impl Simulation {
                 .with_min_len(4096)
                 .for_each(|f| *f = [0.0; 3]);
         }
+        let sub = self.subcycling.as_ref();
         for c in 0..self.model.n_colours {
-            for (g, &beta) in self.model.groups.iter_mut().zip(&self.group_beta) {
-                let settings = ForceSettings { beta, dt: self.dt };
+            for (k, (g, &beta)) in self
+                .model
+                .groups
+                .iter_mut()
+                .zip(&self.group_beta)
+                .enumerate()
+            {
+                let settings = ForceSettings {
+                    beta,
+                    dt: self.dt,
+                    due: sub.map(|s| s.due(k, self.step)),
+                };
                 g.add_colour_forces(
                     c,
                     &self.u,
@@ -387,6 +452,21 @@ impl Simulation {
             f_damp: &self.f_damp,
             f_ext: &self.f_ext,
         };
+        // Subcycling: the node levels and one context per level (steps 2^L Δt, full steps
+        // only: `can_shorten_steps`).
+        let step = self.step;
+        let levels = self.subcycling.as_ref().map(|s| s.node_level.as_slice());
+        let level_ctx: [NodeContext; crate::stage::subcycling::MAX_LEVEL as usize + 1] =
+            std::array::from_fn(|l| {
+                let hl = dt * (1u64 << l) as f64;
+                NodeContext {
+                    dt_v: hl,
+                    dt_u: hl,
+                    dt_prev: hl,
+                    uniform: true,
+                    ..ctx
+                }
+            });
         let n = self.u.len();
         self.u_next
             .par_chunks_mut(NODE_CHUNK)
@@ -399,7 +479,18 @@ impl Simulation {
                 for (k, ((ui, vi), ai)) in un.iter_mut().zip(vn.iter_mut()).zip(an).enumerate() {
                     let i = ci * NODE_CHUNK + k;
                     let kind = ctx.node_kind[i];
-                    if kind == 0 {
+                    let level = levels.map_or(0, |l| l[i]);
+                    let mut step_v = dt_v;
+                    if level > 0 {
+                        // A coarse node (free by construction): its own step when due, else
+                        // nothing here (interpolated after the pass).
+                        if !crate::element::groups::Due::at(step, level) {
+                            continue;
+                        }
+                        let c = &level_ctx[level as usize];
+                        c.predict_free(i, ui, vi, &mut out.parts);
+                        step_v = c.dt_v;
+                    } else if kind == 0 {
                         ctx.predict_free(i, ui, vi, &mut out.parts);
                     } else if kind & BOUNDARY_NODE != 0 {
                         // Updated in the boundary pass below.
@@ -414,7 +505,7 @@ impl Simulation {
                     // Acceleration (V^{n+½} − V^{n−½})/Δt of the uncorrected motion;
                     // recomputed at the contact nodes after the correction.
                     let vo = &ctx.v[i];
-                    *ai = std::array::from_fn(|d| (vi[d] - vo[d]) / dt_v);
+                    *ai = std::array::from_fn(|d| (vi[d] - vo[d]) / step_v);
                     let vm = vi[0].abs().max(vi[1].abs()).max(vi[2].abs());
                     if !vm.is_finite() || !ui.iter().all(|x| x.is_finite()) {
                         if !out.nonfinite {
@@ -429,6 +520,34 @@ impl Simulation {
                 *res = out;
             });
         debug_assert_eq!(n, self.u_next.len());
+        // 3a. Coarse nodes: keep U^{n+2^L} of those that updated, and set every coarse
+        // node's displacement at t^{n+1} by linear interpolation (serial, fixed order);
+        // those that did not update keep their velocity and count ½ M |V|² as kinetic.
+        let mut sub_kinetic = 0.0;
+        if let Some(s) = self.subcycling.as_mut() {
+            let next = step + 1;
+            for &i in &s.coarse_nodes {
+                let i = i as usize;
+                let l = s.node_level[i];
+                if crate::element::groups::Due::at(step, l) {
+                    s.u_end[i] = self.u_next[i];
+                } else {
+                    let v = self.v[i];
+                    self.v_next[i] = v;
+                    sub_kinetic +=
+                        0.5 * self.model.mass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+                }
+                let period = 1u64 << l;
+                let left = (period - next % period) % period;
+                self.u_next[i] = if left == 0 {
+                    s.u_end[i]
+                } else {
+                    let tau = left as f64 * dt;
+                    let (ue, v) = (s.u_end[i], self.v_next[i]);
+                    std::array::from_fn(|d| ue[d] - tau * v[d])
+                };
+            }
+        }
         // 3b. Boundary nodes: predictor with the boundary forces and the centred dashpots.
         let mut boundary_parts: EnergyParts = [0.0; 13];
         let mut boundary_worst: Option<(u32, bool, f64)> = None;
@@ -526,6 +645,7 @@ impl Simulation {
         for k in 0..13 {
             parts[k] += boundary_parts[k] + contact_fix[k];
         }
+        parts[0] += sub_kinetic;
         if let Some(bw) = boundary_worst {
             if bw.1 || worst.is_none_or(|w| !w.1 && bw.2 > w.2) {
                 worst = Some(bw);
@@ -576,8 +696,17 @@ impl Simulation {
         }
         std::mem::swap(&mut self.u, &mut self.u_next);
         std::mem::swap(&mut self.v, &mut self.v_next);
-        for g in self.model.groups.iter_mut() {
-            g.states.commit();
+        match self.subcycling.as_ref() {
+            None => {
+                for g in self.model.groups.iter_mut() {
+                    g.states.commit();
+                }
+            }
+            Some(s) => {
+                for (k, g) in self.model.groups.iter_mut().enumerate() {
+                    g.commit_due(s.due(k, step));
+                }
+            }
         }
         if let Some(anchors) = self.model.anchors.as_mut() {
             anchors.commit(dt_v, h, alpha);
@@ -819,6 +948,7 @@ fn kinetic_energy(v: &[[f64; 3]], mass: &[f64]) -> f64 {
 }
 
 /// Read-only data of the node pass.
+#[derive(Clone, Copy)]
 struct NodeContext<'a> {
     /// The full step Δt (the boundary nodes' updates, prepared for it).
     dt: f64,

@@ -7,6 +7,7 @@ pub mod dynamic;
 pub mod energy;
 pub mod schedule;
 pub mod static_stage;
+pub mod subcycling;
 
 pub use dynamic::Simulation;
 pub use energy::Energies;

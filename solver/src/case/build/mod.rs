@@ -36,6 +36,9 @@ pub struct Case {
     /// End time (s).
     pub end: f64,
     pub safety: f64,
+    /// `time.subcycling`'s `max_level` (`None`: single stepping), enabled on the dynamic
+    /// stage's simulation (`Simulation::enable_subcycling`).
+    pub subcycling: Option<u8>,
     pub output: OutputSection,
     /// The output probes resolved against the model, in the order of their columns.
     pub probes: crate::case::probes::Probes,
@@ -117,6 +120,7 @@ fn build(
     given: &crate::motion::Motions,
 ) -> Result<Case> {
     let max_steps = time::check_time(&file.time, label)?;
+    let subcycling = time::subcycling_level(&file.time, label)?;
     let motions = motions::build_motions(&mut file, label, dir, given)?;
     let mut mesh = mesh::build_mesh(&file.mesh, label, dir)?;
     mesh::add_node_sets(&mut mesh, &file.node_sets, label)?;
@@ -160,6 +164,7 @@ fn build(
         dt,
         end: file.time.end,
         safety: file.time.safety,
+        subcycling,
         output: file.output,
         probes,
         motions,

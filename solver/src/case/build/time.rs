@@ -38,6 +38,38 @@ pub(super) fn check_time(section: &TimeSection, label: &str) -> Result<u64> {
     }
 }
 
+/// The `max_level` of `time.subcycling`: `None` for `"off"` or no entry, else a whole
+/// number from 1 to [`crate::stage::subcycling::MAX_LEVEL`] given as `{ max_level = N }`.
+pub(super) fn subcycling_level(section: &TimeSection, label: &str) -> Result<Option<u8>> {
+    use crate::stage::subcycling::MAX_LEVEL;
+    let expected = format!(
+        "\"off\" or a table {{ max_level = N }} with N a whole number from 1 to {MAX_LEVEL} \
+         (steps up to 2^N Δt)"
+    );
+    let Some(value) = &section.subcycling else {
+        return Ok(None);
+    };
+    let bad = |field: &str, v: &dyn std::fmt::Display| {
+        DcfmError::invalid(label, field, v.to_string(), expected.clone())
+    };
+    match value {
+        toml::Value::String(s) if s == "off" => Ok(None),
+        toml::Value::Table(t) => {
+            if let Some(k) = t.keys().find(|k| k.as_str() != "max_level") {
+                return Err(bad(&format!("time.subcycling.{k}"), &"an unknown key"));
+            }
+            match t.get("max_level") {
+                Some(toml::Value::Integer(n)) if (1..=MAX_LEVEL as i64).contains(n) => {
+                    Ok(Some(*n as u8))
+                }
+                Some(v) => Err(bad("time.subcycling.max_level", v)),
+                None => Err(bad("time.subcycling.max_level", &"missing")),
+            }
+        }
+        v => Err(bad("time.subcycling", v)),
+    }
+}
+
 /// Smallest `time.dt` accepted, as a fraction of the stable step: a step a billionth of
 /// the stable one needs 10⁹ steps to cross one element, each moving the nodes by less
 /// than the round-off of their coordinates — a vanishing step (1e-300, a units slip), not

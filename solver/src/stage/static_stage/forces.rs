@@ -35,6 +35,7 @@ impl ForceBuffers {
         let settings = ForceSettings {
             beta: 0.0,
             dt: f64::MAX,
+            due: None,
         };
         for c in 0..model.n_colours {
             for g in model.groups.iter_mut() {

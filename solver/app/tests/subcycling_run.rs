@@ -1,0 +1,247 @@
+//! `time.subcycling` through the run driver: the summary reports the levels, a run
+//! stopped at a checkpoint and resumed ends bit-identical to an uninterrupted one, and
+//! bad values or models it does not handle are refused by name.
+
+use std::path::Path;
+
+mod common;
+
+use dcfm::case::parse_case;
+use dcfm_app::run::{run_case, RunOptions};
+
+/// A 2 × 2 m bar along x: 4 slabs 0.5 m long, then 4 cubes of 2 m, fixed at x = 0,
+/// pulled by gravity along x; subcycling `setting`, histories every step, checkpoints
+/// every `every` steps, run to `end`.
+fn graded_bar(setting: &str, every: u64, end: &str) -> String {
+    format!(
+        r#"title = "graded bar"
+[time]
+end = {end}
+subcycling = {setting}
+[output]
+checkpoint_every = {every}
+nodes = [0, 20, 35]
+[mesh]
+[[mesh.blocks]]
+name = "fine"
+origin = [0.0, 0.0, 0.0]
+size = [2.0, 2.0, 2.0]
+divisions = [4, 1, 1]
+[[mesh.blocks]]
+name = "coarse"
+origin = [2.0, 0.0, 0.0]
+size = [8.0, 2.0, 2.0]
+divisions = [4, 1, 1]
+[materials.rock]
+model = "elastic"
+young = 20e9
+poisson = 0.25
+density = 2700.0
+[[regions]]
+name = "fine"
+material = "rock"
+[[regions]]
+name = "coarse"
+material = "rock"
+[[boundary.fixed]]
+set = "fine.xmin"
+dofs = "xyz"
+[loads.gravity]
+acceleration = [9.81, 0.0, -9.81]
+"#
+    )
+}
+
+fn opts(out: &Path, resume: bool) -> RunOptions {
+    RunOptions {
+        out: out.to_path_buf(),
+        resume,
+        progress: false,
+        ..Default::default()
+    }
+}
+
+#[test]
+fn subcycled_run_reports_levels_and_resumes_bit_identically() {
+    let dir = std::env::temp_dir().join(format!("dcfm-subcycling-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let case = graded_bar("{ max_level = 3 }", 8, "0.02");
+    let full = run_case(
+        parse_case(&case, "g.toml", Path::new(".")).unwrap(),
+        &opts(&dir.join("full"), false),
+    )
+    .unwrap();
+    let s = full.subcycling.clone().expect("subcycling in the summary");
+    assert_eq!(s.max_level, 3);
+    // The cubes (own step between 2 and 4 × the slabs') step at 2 Δt, except the one
+    // touching the slabs; the nodes of the slabs (and of the fixed end) at Δt.
+    assert_eq!(s.elements_per_level, vec![5, 3, 0, 0], "{s:?}");
+    assert_eq!(s.nodes_per_level, vec![20, 16, 0, 0], "{s:?}");
+    assert!(
+        full.energy_residual_relative < 1e-2,
+        "{}",
+        full.energy_residual_relative
+    );
+    // Interrupted at a shorter end, resumed to the full end.
+    let short = case.replace("end = 0.02", "end = 0.011");
+    run_case(
+        parse_case(&short, "g.toml", Path::new(".")).unwrap(),
+        &opts(&dir.join("part"), false),
+    )
+    .unwrap();
+    let resumed = run_case(
+        parse_case(&case, "g.toml", Path::new(".")).unwrap(),
+        &opts(&dir.join("part"), true),
+    )
+    .unwrap();
+    assert!(resumed
+        .resumed_from_step
+        .is_some_and(|s| s > 0 && s % 8 == 0));
+    assert_eq!(full.steps, resumed.steps);
+    let a = std::fs::read_to_string(dir.join("full/histories.csv")).unwrap();
+    let b = std::fs::read_to_string(dir.join("part/histories.csv")).unwrap();
+    assert_eq!(a, b, "histories differ after resuming a subcycled run");
+    // The same case without subcycling differs (the option does something) but agrees
+    // closely in its end energies.
+    let off = run_case(
+        parse_case(&graded_bar("\"off\"", 8, "0.02"), "g.toml", Path::new(".")).unwrap(),
+        &opts(&dir.join("off"), false),
+    )
+    .unwrap();
+    assert!(off.subcycling.is_none());
+    let c = std::fs::read_to_string(dir.join("off/histories.csv")).unwrap();
+    assert_ne!(a, c);
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn bad_subcycling_settings_are_refused_by_name() {
+    for (setting, field) in [
+        ("{ max_level = 9 }", "time.subcycling.max_level"),
+        ("{ max_level = 0 }", "time.subcycling.max_level"),
+        ("{ max_level = 2.5 }", "time.subcycling.max_level"),
+        ("{ levels = 2 }", "time.subcycling.levels"),
+        ("\"on\"", "time.subcycling"),
+        ("3", "time.subcycling"),
+    ] {
+        let err = parse_case(&graded_bar(setting, 8, "0.01"), "g.toml", Path::new("."))
+            .unwrap_err()
+            .to_string();
+        assert!(
+            err.contains(field) && err.contains("g.toml"),
+            "{setting}: {err}"
+        );
+    }
+    // Checkpoints between synchronous steps (the cycle is 2 steps).
+    let dir = std::env::temp_dir().join(format!("dcfm-subcycling-bad-{}", std::process::id()));
+    let case = parse_case(
+        &graded_bar("{ max_level = 3 }", 5, "0.01"),
+        "g.toml",
+        Path::new("."),
+    )
+    .unwrap();
+    let err = run_case(case, &opts(&dir, false)).unwrap_err().to_string();
+    assert!(err.contains("output.checkpoint_every"), "{err}");
+    // Stiffness-proportional damping: refused, not run wrong.
+    let damped = graded_bar("{ max_level = 3 }", 8, "0.01") + "[damping]\nbeta = 1e-5\n";
+    let case = parse_case(&damped, "g.toml", Path::new(".")).unwrap();
+    let err = run_case(case, &opts(&dir, false)).unwrap_err().to_string();
+    assert!(
+        err.contains("time.subcycling") && err.contains("β"),
+        "{err}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+/// The graded bar cut at x = 2 m between its slabs and its cubes by a frictional contact
+/// interface, the cubes pressed onto the slabs by gravity along −x: every node of both
+/// surfaces steps at Δt (so the cubes' face at the cut does, which the element levels alone
+/// would step at 2 Δt), and the subcycled run follows the single-step one.
+#[test]
+fn contact_nodes_stay_on_the_finest_step() {
+    let dir = std::env::temp_dir().join(format!("dcfm-subcycling-contact-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let case = |setting: &str| {
+        graded_bar(setting, 8, "0.02")
+            .replace("[mesh]\n", "[mesh]\nsplit = [[\"fine\", \"coarse\"]]\n")
+            .replace(
+                "acceleration = [9.81, 0.0, -9.81]",
+                "acceleration = [-9.81, 0.0, 0.0]",
+            )
+            + "[[interfaces]]\nname = \"cut\"\nsurface_a = \"coarse-fine\"\n\
+               surface_b = \"fine-coarse\"\nmu_s = 0.5\nmu_d = 0.4\ncohesion = 0.0\n"
+    };
+    let run = |setting: &str, name: &str| {
+        run_case(
+            parse_case(&case(setting), "c.toml", Path::new(".")).unwrap(),
+            &opts(&dir.join(name), false),
+        )
+        .unwrap()
+    };
+    let on = run("{ max_level = 3 }", "on");
+    let off = run("\"off\"", "off");
+    assert!(off.subcycling.is_none());
+    assert!(
+        on.energies.contact > 0.0,
+        "the cut must take contact forces"
+    );
+    let s = on.subcycling.clone().unwrap();
+    // 20 nodes of the slabs and 4 of the cubes' face at the cut at Δt; 16 cube nodes at 2 Δt.
+    assert_eq!(s.nodes_per_level, vec![24, 16, 0, 0], "{s:?}");
+    assert_eq!(s.elements_per_level, vec![5, 3, 0, 0], "{s:?}");
+    // Row by row (the same full steps; the last rows differ in time: the subcycled run
+    // takes no shortened last step), every history column within 5 % of its range in the
+    // single-step run for the displacements — the energies (columns 1–8: kinetic … residual) within 5 % of the
+    // largest energy, the external work (the friction work at the cut is 1e-4 of it).
+    let read = |name: &str| -> Vec<Vec<f64>> {
+        std::fs::read_to_string(dir.join(name).join("histories.csv"))
+            .unwrap()
+            .lines()
+            .skip(1)
+            .map(|l| {
+                l.split(',')
+                    .map(|x| x.trim().parse().unwrap_or(f64::NAN))
+                    .collect()
+            })
+            .collect()
+    };
+    let (a, b) = (read("on"), read("off"));
+    // Velocities and accelerations of a coarse node are those of its own (longer) step,
+    // at another time: compared are the energies and the displacements along the bar
+    // (the lateral ones, Poisson's, are 1/20 of these and differ by up to 6 % of their
+    // range).
+    let header: Vec<String> = std::fs::read_to_string(dir.join("off/histories.csv"))
+        .unwrap()
+        .lines()
+        .next()
+        .unwrap()
+        .split(',')
+        .map(|h| h.trim().to_string())
+        .collect();
+    let rows = a.len().min(b.len()) - 1;
+    assert!(rows > 100);
+    for col in 0..b[0].len() {
+        let name = &header[col];
+        if !((1..=8).contains(&col) || name.ends_with("_ux")) {
+            continue;
+        }
+        let range = if (1..=8).contains(&col) {
+            b.iter().map(|r| r[5].abs()).fold(0.0, f64::max)
+        } else {
+            b.iter().map(|r| r[col].abs()).fold(0.0, f64::max)
+        };
+        for k in 0..rows {
+            let (x, y) = (a[k][col], b[k][col]);
+            assert!(
+                (x - y).abs() <= 0.05 * range || (x.is_nan() && y.is_nan()),
+                "column {col} row {k}: subcycled {x}, single {y} (range {range})"
+            );
+        }
+    }
+    assert!(
+        on.energy_residual_relative < 1e-2,
+        "{}",
+        on.energy_residual_relative
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}

@@ -173,4 +173,7 @@ pub(crate) struct Interface {
     /// (node of surface a, index into `slaves`), sorted by node: the slave record of a
     /// node by binary search.
     pub slave_index: Vec<(u32, u32)>,
+    /// The contact search of the current step for the nodes in point-to-surface contact
+    /// (found by the step's first point-to-surface solve, used by all of them).
+    pub faces: super::surface::StepFaces,
 }

@@ -12,8 +12,13 @@
 //! the latest forces of the others in the predictor (its own forces of the previous sweep
 //! taken back and its records restored to the start of the step, keeping what the step has
 //! learnt: a pair that slid keeps μd, a broken bond stays broken). After the first sweep
-//! only the pairs at a junction (node or partner on another interface) and the
-//! point-to-surface parts can change; the other pairs are not solved again. For sticking
+//! only the pairs at a junction (node or partner on another interface), the pairs that
+//! share a node with a point-to-surface system (its nodes in contact and their faces' nodes,
+//! from the step's contact search, `surface::StepFaces`) and those systems can change: a
+//! pair's force depends on the forces at its two nodes only, and pairs of one interface
+//! share no node. Each later sweep solves just those, once each (pairs, then the
+//! point-to-surface system of the interface, eqs. (16)–(22)); the other pairs keep their
+//! first solve. For sticking
 //! pairs the sweeps are alternating projections onto the pairs' constraints in the mass
 //! metric, which converge linearly when the constraints are consistent.
 //!
@@ -31,7 +36,9 @@
 //! loop is the last sweep's. Switches to point-to-surface contact (large slip) are applied
 //! after convergence. No settling within the sweep limit is an error naming the interfaces.
 
-use super::{apply_switches, begin_step, restart, ContactStepInput, ContactSystem, Interface};
+use super::{
+    apply_switches, begin_step, restart, ContactStepInput, ContactSystem, Interface, Pairs,
+};
 use super::{geom::norm, geom::sub, NONE};
 use crate::error::{DcfmError, Result};
 
@@ -120,19 +127,32 @@ impl ContactSystem {
         // The group's nodes are the ones touched from here on (groups share no node).
         let first = self.touched.len();
         let mut change: f64 = 0.0;
+        let mut late_from = u64::MAX;
+        self.joint_stats.group_steps += 1;
         for sweep in 0..MAX_SWEEPS {
+            self.joint_stats.sweeps += 1;
+            let count = sweep as u64 + 1;
+            self.joint_stats.max_sweeps = self.joint_stats.max_sweeps.max(count);
+            if sweep == 1 {
+                late_from = self.joint_stats.pair_solves;
+            }
             for &k in members {
                 let iface = &mut interfaces[k];
                 if sweep == 0 {
                     self.interface_step(iface, inp, r)?;
                 } else if iface.slaves.iter().any(|s| s.surface && s.active) {
-                    // The point-to-surface system couples the whole interface.
-                    restart(iface, r, false, false);
-                    restart(iface, r, true, false);
-                    self.interface_step(iface, inp, r)?;
+                    // One Gauss–Seidel sweep of the interface's parts that the others can
+                    // change: the pairs at a junction or sharing a node with the
+                    // point-to-surface system, then the system, each with the latest forces
+                    // of the rest.
+                    let coupled = Pairs::Coupled(self.stamp);
+                    restart(iface, r, false, coupled);
+                    self.point_to_point(iface, inp, r, coupled);
+                    restart(iface, r, true, Pairs::All);
+                    self.surface_step(iface, inp, r)?;
                 } else {
-                    restart(iface, r, false, true);
-                    self.point_to_point(iface, inp, r, true);
+                    restart(iface, r, false, Pairs::Junctions);
+                    self.point_to_point(iface, inp, r, Pairs::Junctions);
                 }
             }
             let mut fmax: f64 = 0.0;
@@ -153,6 +173,7 @@ impl ContactSystem {
             }
             change /= fmax.max(f64::MIN_POSITIVE);
             if sweep > 0 && change <= TOLERANCE {
+                self.joint_stats.late_pair_solves += self.joint_stats.pair_solves - late_from;
                 self.joint_prev.clear();
                 for &k in members {
                     apply_switches(&mut interfaces[k]);
@@ -161,6 +182,7 @@ impl ContactSystem {
             }
         }
         self.joint_prev.clear();
+        self.joint_stats.late_pair_solves += self.joint_stats.pair_solves - late_from;
         if change <= ACCEPTED {
             self.unsettled.0 += 1;
             self.unsettled.1 = self.unsettled.1.max(change);

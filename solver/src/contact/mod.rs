@@ -15,7 +15,7 @@
 //! 1. for each interface, every pair still in point-to-point contact: trial stick force
 //!    (6)–(9), state checks (12)–(15), forces +R on node a and −R on node b;
 //! 2. for each interface with nodes in point-to-surface contact: search the faces of
-//!    surface b (grid buckets over the configuration at tⁿ), bilinear projection, the
+//!    surface b (grid buckets over the configuration at tⁿ, once per step: `surface::StepFaces`), bilinear projection, the
 //!    coupled system (17)–(21) for the nodes whose predicted gap is closed, solved
 //!    with a sparse LU (faer), sliding and separation switches until consistent;
 //! 3. the work of the contact forces over the step, accumulated as dissipation.
@@ -75,6 +75,46 @@ pub struct ContactStepInput<'a> {
     pub v_pred: &'a [[f64; 3]],
 }
 
+/// Which pairs of an interface a sweep takes back and solves again.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum Pairs {
+    /// Every pair.
+    All,
+    /// The pairs at a junction of interfaces (node or partner on another interface).
+    Junctions,
+    /// The pairs at a junction and those that share a node with the point-to-surface
+    /// system of the `compute` call given (the stamp): the only pairs whose inputs the
+    /// other parts of a group change within the step.
+    Coupled(u64),
+}
+
+impl Pairs {
+    /// Whether the pair record `k` of `iface` (`s`) is selected.
+    fn selects(self, faces: &surface::StepFaces, k: usize, s: &SlaveNode) -> bool {
+        match self {
+            Pairs::All => true,
+            Pairs::Junctions => s.junction,
+            Pairs::Coupled(stamp) => s.junction || faces.coupled(stamp, k),
+        }
+    }
+}
+
+/// Work counts of the joint solves of groups of interfaces that meet (`joint.rs`) since the
+/// model was built or restored.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct JointStats {
+    /// Steps of a group (one per group per step).
+    pub group_steps: u64,
+    /// Gauss–Seidel sweeps over all of them.
+    pub sweeps: u64,
+    /// Most sweeps of one group in one step.
+    pub max_sweeps: u64,
+    /// Pair solves (eqs. (6)–(15)) of every step, in groups or not, every sweep counted.
+    pub pair_solves: u64,
+    /// Pair solves in the sweeps after the first of the groups' steps.
+    pub late_pair_solves: u64,
+}
+
 /// Marker for "no node / no face".
 pub(crate) const NONE: u32 = u32::MAX;
 
@@ -97,6 +137,8 @@ pub struct ContactSystem {
     /// Net contact force of each node of the group in the previous sweep of a joint solve
     /// (`joint.rs`), in the order of `touched`; empty between solves.
     joint_prev: Vec<[f64; 3]>,
+    /// Work of the joint solves (see [`JointStats`]).
+    joint_stats: JointStats,
 }
 
 impl ContactSystem {
@@ -131,6 +173,7 @@ impl ContactSystem {
             groups,
             unsettled: (0, 0.0),
             joint_prev: Vec::new(),
+            joint_stats: JointStats::default(),
         })
     }
 
@@ -139,6 +182,11 @@ impl ContactSystem {
     /// largest relative force change left (see `joint.rs`).
     pub fn unsettled_joint_steps(&self) -> (u64, f64) {
         self.unsettled
+    }
+
+    /// Work counts of the joint solves of groups of interfaces that meet (`joint.rs`).
+    pub fn joint_stats(&self) -> JointStats {
+        self.joint_stats
     }
 
     /// True when the model has no interface.
@@ -266,7 +314,7 @@ impl ContactSystem {
         r: &mut [[f64; 3]],
     ) -> Result<()> {
         let mut scratch = std::mem::take(&mut self.scratch);
-        let res = surface::solve(iface, inp, r, &mut scratch);
+        let res = surface::solve(iface, inp, self.stamp, r, &mut scratch);
         for &node in &scratch.touched {
             self.touch(node);
         }
@@ -307,7 +355,7 @@ impl ContactSystem {
             .iter()
             .any(|s| !s.surface && s.partner != NONE && s.active);
         if !(any_surface && any_pair) {
-            self.point_to_point(iface, inp, r, false);
+            self.point_to_point(iface, inp, r, Pairs::All);
             if any_surface {
                 self.surface_step(iface, inp, r)?;
             }
@@ -319,11 +367,11 @@ impl ContactSystem {
         for sweep in 0..MAX_SWEEPS {
             // Each part is solved again with the other part's latest forces in `r`.
             if sweep > 0 {
-                restart(iface, r, false, false);
+                restart(iface, r, false, Pairs::All);
             }
-            self.point_to_point(iface, inp, r, false);
+            self.point_to_point(iface, inp, r, Pairs::All);
             if sweep > 0 {
-                restart(iface, r, true, false);
+                restart(iface, r, true, Pairs::All);
             }
             self.surface_step(iface, inp, r)?;
             let mut change: f64 = 0.0;
@@ -347,14 +395,14 @@ impl ContactSystem {
         })
     }
 
-    /// Step 1 of [`compute`](Self::compute): every pair in point-to-point contact (only
-    /// the pairs at a junction of interfaces when `junctions_only`).
+    /// Step 1 of [`compute`](Self::compute): every pair in point-to-point contact that
+    /// `which` selects.
     fn point_to_point(
         &mut self,
         iface: &mut Interface,
         inp: &ContactStepInput,
         r: &mut [[f64; 3]],
-        junctions_only: bool,
+        which: Pairs,
     ) {
         let dt2 = inp.dt * inp.dt;
         let base = PairParams {
@@ -363,10 +411,12 @@ impl ContactSystem {
             shear_capacity: 0.0,
             tensile_capacity: 0.0,
         };
-        for s in iface.slaves.iter_mut() {
-            if s.surface || s.partner == NONE || !s.active || (junctions_only && !s.junction) {
+        let faces = &iface.faces;
+        for (k, s) in iface.slaves.iter_mut().enumerate() {
+            if s.surface || s.partner == NONE || !s.active || !which.selects(faces, k, s) {
                 continue;
             }
+            self.joint_stats.pair_solves += 1;
             let (a, b) = (s.node as usize, s.partner as usize);
             let (wa, wb) = (inp.inv_mass[a], inp.inv_mass[b]);
             let w_sum = wa + wb;
@@ -450,13 +500,14 @@ fn begin_step(iface: &mut Interface) {
     }
 }
 
-/// Take back the forces that the pairs (`surface = false`) or the point-to-surface nodes
-/// (`surface = true`) of the interface applied in the current sweep (only the pairs at a
-/// junction of interfaces when `junctions_only`), and restore their records to the start
-/// of the step, `iface.snapshot` (keeping what the step has learnt: slid, broke).
-fn restart(iface: &mut Interface, r: &mut [[f64; 3]], surface: bool, junctions_only: bool) {
-    for (s, snap) in iface.slaves.iter_mut().zip(&iface.snapshot) {
-        if s.surface != surface || (junctions_only && !s.junction) {
+/// Take back the forces that the pairs that `which` selects (`surface = false`) or the
+/// point-to-surface nodes (`surface = true`) of the interface applied in the current sweep,
+/// and restore their records to the start of the step, `iface.snapshot` (keeping what the
+/// step has learnt: slid, broke).
+fn restart(iface: &mut Interface, r: &mut [[f64; 3]], surface: bool, which: Pairs) {
+    let faces = &iface.faces;
+    for (k, (s, snap)) in iface.slaves.iter_mut().zip(&iface.snapshot).enumerate() {
+        if s.surface != surface || (!surface && !which.selects(faces, k, s)) {
             continue;
         }
         let a = s.node as usize;

@@ -356,6 +356,7 @@ pub(super) fn build_interface(
         snapshot: Vec::new(),
         prev_force: Vec::new(),
         slave_index,
+        faces: Default::default(),
     })
 }
 

@@ -542,33 +542,147 @@ fn active_set(
     ))
 }
 
-/// Point-to-surface contact of every node of `iface` in that mode, for one step.
-pub(super) fn solve(
-    iface: &mut Interface,
-    inp: &ContactStepInput,
-    r: &mut [[f64; 3]],
-    s: &mut Scratch,
-) -> Result<()> {
-    let dt2 = inp.dt * inp.dt;
-    s.touched.clear();
-    s.active.clear();
+/// Where a node in point-to-surface contact touches surface b in one step: the closest
+/// facing face (`search.rs`), its shape functions φ at the contact point c, the contact
+/// normal n (minus the outward normal of the face at c) and dⁿ = x_c − xᵢ, all on the
+/// configuration at tⁿ.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Touch {
+    face: u32,
+    xi: f64,
+    eta: f64,
+    phi: [f64; 4],
+    n: [f64; 3],
+    dn: [f64; 3],
+}
+
+/// The contact search of one interface for one step, found once and used by every solve of
+/// that step (the sweeps of a joint solve, `joint.rs`, and of an interface with both pairs
+/// and point-to-surface nodes, `mod.rs`).
+///
+/// What the search depends on: the positions at tⁿ (reference coordinates + Uⁿ) of the
+/// nodes in point-to-surface contact and of the faces of surface b, each node's activation
+/// offset δ₀ and normal, which faces of b are active, and which nodes are in point-to-surface
+/// contact. None of these changes within a step: the predictor Ū^{n+1} and the contact
+/// forces of the step enter only d̄ᵢ, never the choice of face, ξ, η, n or dⁿ; records are
+/// restored to the start of the step between sweeps, and switches to point-to-surface
+/// contact (large slip) and activation (`activity.rs`) happen between steps. So the search
+/// is keyed by the `compute` call it was made in ([`StepFaces::stamp`]) and redone, without
+/// any caller's help, by the first solve of the next call.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct StepFaces {
+    /// The `ContactSystem::compute` call (its stamp, ≥ 1) the search belongs to; 0: none.
+    stamp: u64,
+    /// Capture distance of the search (the gap recorded for a node that touches no face).
+    capture: f64,
+    /// Indexed like `Interface::slaves`: the face touched by each node in point-to-surface
+    /// contact, `None` for a node that touches none or is not in that mode.
+    touches: Vec<Option<Touch>>,
+    /// Indexed like `Interface::slaves`: a pair (point-to-point) whose node or partner is a
+    /// node of the point-to-surface system (a node with a touch or a node of its face), so
+    /// that its force and the system's change each other within the step.
+    coupled: Vec<bool>,
+    /// Buffer: the nodes of the point-to-surface system, sorted.
+    nodes: Vec<u32>,
+}
+
+impl StepFaces {
+    /// Whether pair record `k` shares a node with the point-to-surface system of the
+    /// `compute` call `stamp` (true when no search of that call is stored: nothing known).
+    pub(crate) fn coupled(&self, stamp: u64, k: usize) -> bool {
+        self.stamp != stamp || self.coupled.get(k).copied().unwrap_or(true)
+    }
+}
+
+/// The contact search of `iface` for the `compute` call `stamp` (kept in `iface.faces`):
+/// done on the first call of the step, the stored result returned on the later ones.
+fn step_faces(iface: &mut Interface, inp: &ContactStepInput, stamp: u64, grid: &mut FaceGrid) {
+    if iface.faces.stamp == stamp && stamp != 0 {
+        return;
+    }
     let cur = |k: u32| -> [f64; 3] {
         let k = k as usize;
         add(inp.coords[k], inp.u_old[k])
     };
     // The faces of b binned over the configuration at tⁿ (`search.rs`).
-    s.grid
-        .rebuild(&iface.b_faces, &iface.b_face_active, iface.b_face_size, cur);
-    let capture = s.grid.capture();
+    grid.rebuild(&iface.b_faces, &iface.b_face_active, iface.b_face_size, cur);
+    let cache = &mut iface.faces;
+    cache.stamp = stamp;
+    cache.capture = grid.capture();
+    cache.touches.clear();
+    cache.touches.resize(iface.slaves.len(), None);
     // Closest facing face for each node in point-to-surface contact.
-    for (si, sl) in iface.slaves.iter_mut().enumerate() {
+    for (sl, touch) in iface.slaves.iter().zip(cache.touches.iter_mut()) {
         if !sl.surface || !sl.active {
             continue;
         }
         // The node's position with its activation offset δ₀ (zero unless it was placed
         // against a surface that had already moved).
         let p = add(cur(sl.node), sl.rel0);
-        let Some(FaceHit { face: fi, xi, eta }) = s.grid.closest(p, sl.normal, &iface.b_faces, cur)
+        let Some(FaceHit { face: fi, xi, eta }) = grid.closest(p, sl.normal, &iface.b_faces, cur)
+        else {
+            continue;
+        };
+        let x = iface.b_faces[fi as usize].map(cur);
+        let n = scale(-1.0, face_normal(&x, xi, eta).unwrap_or([0.0; 3]));
+        let phi = face_shape(xi, eta);
+        let (xc, _, _) = face_point(&x, xi, eta);
+        *touch = Some(Touch {
+            face: fi,
+            xi,
+            eta,
+            phi,
+            n,
+            dn: sub(xc, p),
+        });
+    }
+    // The pairs that share a node with the system.
+    cache.nodes.clear();
+    for (sl, touch) in iface.slaves.iter().zip(&cache.touches) {
+        if let Some(t) = touch {
+            cache.nodes.push(sl.node);
+            cache
+                .nodes
+                .extend_from_slice(&iface.b_faces[t.face as usize]);
+        }
+    }
+    cache.nodes.sort_unstable();
+    cache.nodes.dedup();
+    let nodes = &cache.nodes;
+    cache.coupled.clear();
+    cache.coupled.extend(iface.slaves.iter().map(|sl| {
+        !sl.surface
+            && sl.partner != NONE
+            && (nodes.binary_search(&sl.node).is_ok() || nodes.binary_search(&sl.partner).is_ok())
+    }));
+}
+
+/// Point-to-surface contact of every node of `iface` in that mode, for one step (`stamp`:
+/// the `compute` call, which keys the contact search, [`StepFaces`]).
+pub(super) fn solve(
+    iface: &mut Interface,
+    inp: &ContactStepInput,
+    stamp: u64,
+    r: &mut [[f64; 3]],
+    s: &mut Scratch,
+) -> Result<()> {
+    let dt2 = inp.dt * inp.dt;
+    s.touched.clear();
+    s.active.clear();
+    step_faces(iface, inp, stamp, &mut s.grid);
+    let capture = iface.faces.capture;
+    for (si, sl) in iface.slaves.iter_mut().enumerate() {
+        if !sl.surface || !sl.active {
+            continue;
+        }
+        let Some(Touch {
+            face: fi,
+            xi,
+            eta,
+            phi,
+            n,
+            dn,
+        }) = iface.faces.touches[si]
         else {
             sl.face = NONE;
             sl.state = PairState::Separated;
@@ -578,11 +692,6 @@ pub(super) fn solve(
             continue;
         };
         let face = iface.b_faces[fi as usize];
-        let x = face.map(cur);
-        let n = scale(-1.0, face_normal(&x, xi, eta).unwrap_or([0.0; 3]));
-        let phi = face_shape(xi, eta);
-        let (xc, _, _) = face_point(&x, xi, eta);
-        let dn = sub(xc, p);
         let pred = |k: u32| -> [f64; 3] {
             let k = k as usize;
             add(

@@ -203,6 +203,16 @@ pub struct BarLines {
 pub type BarError = String;
 
 impl AnchorBars {
+    /// The host elements of every bar (perfect-bond segments and bond–slip bar nodes), with
+    /// repeats: the elements whose nodes take the bars' forces.
+    pub fn host_elements(&self) -> impl Iterator<Item = u32> + '_ {
+        self.segments.iter().map(|s| s.host).chain(
+            self.bond_slip
+                .iter()
+                .flat_map(|b| b.hosts.iter().map(|h| h.element)),
+        )
+    }
+
     /// Add one straight bar from `a` to `b`, cut at the faces of the elements `locator`
     /// holds; `group` names its history group.
     pub fn add_bar(

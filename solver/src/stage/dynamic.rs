@@ -230,7 +230,7 @@ impl Simulation {
     /// (`stage::subcycling`), `safety` the factor the case's Δt was chosen with. Only at
     /// a synchronous state (every node at the same time: before the first step, or a
     /// state restored from a checkpoint). Refuses (an error naming `time.subcycling`)
-    /// models with anchors or stiffness-proportional damping.
+    /// models with stiffness-proportional damping (anchor bars: their host elements' nodes step at Δt).
     pub fn enable_subcycling(&mut self, max_level: u8, safety: f64) -> Result<&SubcyclingSummary> {
         let mut s = crate::stage::subcycling::plan(
             &self.model,

@@ -116,7 +116,7 @@ fn refuse(what: &str, max_level: u8) -> DcfmError {
 
 /// The levels of `model` stepped at `dt` with safety factor `safety` (module docs).
 /// `forced` marks the nodes held on the finest level besides the constrained and boundary
-/// nodes (the loaded ones). Refuses anchors and stiffness-proportional damping.
+/// nodes (the loaded ones). Refuses stiffness-proportional damping.
 pub(crate) fn plan(
     model: &Model,
     dt: f64,
@@ -131,9 +131,6 @@ pub(crate) fn plan(
             max_level,
             format!("a whole number from 1 to {MAX_LEVEL}"),
         ));
-    }
-    if model.anchors.is_some() {
-        return Err(refuse("anchor bars", max_level));
     }
     let (alpha, beta) = model.max_damping();
     if beta > 0.0 {
@@ -188,6 +185,16 @@ pub(crate) fn plan(
     if let Some(c) = &model.contact {
         for i in c.surface_nodes() {
             node_level[i as usize] = 0;
+        }
+    }
+    // Anchor bars: every node of a host element steps at Δt, so the bars (their forces
+    // taken from the displacements at every fine step, their bond–slip nodes stepped at Δt)
+    // only ever touch nodes that update at every step.
+    if let Some(a) = &model.anchors {
+        for e in a.host_elements() {
+            for &i in &model.mesh.elements[e as usize] {
+                node_level[i as usize] = 0;
+            }
         }
     }
     let mut elements_per_level = vec![0u64; max_level as usize + 1];

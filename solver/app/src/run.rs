@@ -86,6 +86,11 @@ pub struct RunSummary {
     /// settle to their tolerance and were accepted, and the largest relative force change
     /// left (docs/contact.md §5a); (0, 0) when every step settled.
     pub contact_unsettled_steps: (u64, f64),
+    /// Work of the joint solves of interfaces that meet (docs/contact.md §5a), counted since
+    /// the model was built or restored: group steps, how many the direct solve settled and
+    /// how many fell back to the sweeps, the largest system; absent without contact.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub contact_joint: Option<dcfm::contact::JointStats>,
     /// What changed in the case or mesh since the checkpoint the run resumed from
     /// (`--resume-with-changed-case`); empty otherwise.
     pub resumed_with_changes: Vec<String>,
@@ -943,6 +948,7 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
             .contact
             .as_ref()
             .map_or((0, 0.0), |c| c.unsettled_joint_steps()),
+        contact_joint: sim.model.contact.as_ref().map(|c| c.joint_stats()),
         resumed_with_changes: changes,
         probes: columns.probes,
         subcycling: sim.subcycling().cloned(),

@@ -36,10 +36,11 @@
 //! loop is the last sweep's. Switches to point-to-surface contact (large slip) are applied
 //! after convergence. No settling within the sweep limit is an error naming the interfaces.
 
+use super::geom::{axpy, dot, norm, sub, tangential};
 use super::{
-    apply_switches, begin_step, restart, ContactStepInput, ContactSystem, Interface, Pairs,
+    apply_switches, begin_step, record_pair, restart, surface, ContactStepInput, ContactSystem,
+    Interface, PairOutcome, PairParams, PairState, Pairs, NONE,
 };
-use super::{geom::norm, geom::sub, NONE};
 use crate::error::{DcfmError, Result};
 
 /// Most sweeps of a group's joint solve.
@@ -111,7 +112,8 @@ pub(super) fn group_interfaces(interfaces: &mut [Interface], n_nodes: usize) -> 
 
 impl ContactSystem {
     /// One step of a group of interfaces that share nodes (`members`, indices into
-    /// `interfaces`): block Gauss–Seidel until the net contact forces of its nodes settle.
+    /// `interfaces`): the direct solve, or, where it fails, block Gauss–Seidel until the
+    /// net contact forces of its nodes settle.
     pub(super) fn joint_step(
         &mut self,
         interfaces: &mut [Interface],
@@ -124,11 +126,131 @@ impl ContactSystem {
             begin_step(iface);
             iface.snapshot.clone_from(&iface.slaves);
         }
+        self.joint_stats.group_steps += 1;
+        if self.direct_joint {
+            if self.direct_step(interfaces, members, inp, r) {
+                self.joint_stats.direct += 1;
+                for &k in members {
+                    apply_switches(&mut interfaces[k]);
+                }
+                return Ok(());
+            }
+            // Take back everything the direct solve applied and start the step again.
+            self.joint_stats.fallbacks += 1;
+            for &k in members {
+                let iface = &mut interfaces[k];
+                restart(iface, r, false, Pairs::All);
+                restart(iface, r, true, Pairs::All);
+                begin_step(iface);
+            }
+        }
+        self.sweep_step(interfaces, members, inp, r)
+    }
+
+    /// The direct solve of a group for one step: the pairs that nothing else in the group
+    /// changes (away from junctions and from point-to-surface systems) are solved on their
+    /// own (eqs. (6)–(15)); the rest — the pairs at junctions, the pairs that share a node
+    /// with a point-to-surface system and the nodes of those systems, of every interface of
+    /// the group — form one system in which each pair is a constraint between two nodes
+    /// and each point-to-surface node one between a node and a face (eqs. (17)–(21) with
+    /// Hᵢₖ summed over every node two constraints share, `surface::Active`). It is solved
+    /// by the active set of `surface.rs` with each constraint's own law (bond, static and
+    /// kinetic friction, separation, eqs. (12)–(15)), then polished until every constraint
+    /// holds its law given the others. Returns false, with the forces and records left for
+    /// the caller to take back, where that fails (a singular system the polish cannot
+    /// settle, constraints that cannot all hold).
+    fn direct_step(
+        &mut self,
+        interfaces: &mut [Interface],
+        members: &[usize],
+        inp: &ContactStepInput,
+        r: &mut [[f64; 3]],
+    ) -> bool {
+        let stamp = self.stamp;
+        let mut sys = std::mem::take(&mut self.scratch);
+        sys.active.clear();
+        sys.touched.clear();
+        sys.joint = true;
+        for &k in members {
+            let iface = &mut interfaces[k];
+            let surface = iface.slaves.iter().any(|s| s.surface && s.active);
+            if surface {
+                surface::step_faces(iface, inp, stamp, &mut sys.grid);
+            }
+            self.point_to_point(iface, inp, r, Pairs::Alone(surface.then_some(stamp)));
+        }
+        for &k in members {
+            let iface = &mut interfaces[k];
+            let surface = iface.slaves.iter().any(|s| s.surface && s.active);
+            let alone = Pairs::Alone(surface.then_some(stamp));
+            for si in 0..iface.slaves.len() {
+                let s = &iface.slaves[si];
+                let constraint = if s.surface {
+                    surface::constraint(iface, k, si, inp, r)
+                } else if s.partner != NONE && s.active && !alone.selects(&iface.faces, si, s) {
+                    pair_constraint(iface, k, si, inp, r)
+                } else {
+                    None
+                };
+                sys.active.extend(constraint);
+            }
+        }
+        let w = inp.inv_mass;
+        let solved = surface::solve_active(&mut sys, inp.dt, &|j| w[j as usize]);
+        let Ok((solves, sweeps)) = solved else {
+            self.scratch = sys;
+            return false;
+        };
+        let st = &mut self.joint_stats;
+        st.max_system = st.max_system.max(sys.active.len() as u64);
+        st.max_active_set_solves = st.max_active_set_solves.max(solves as u64);
+        st.max_polish_sweeps = st.max_polish_sweeps.max(sweeps as u64);
+        for a in &sys.active {
+            surface::apply_force(a, r, &mut sys.touched);
+        }
+        for &node in &sys.touched {
+            self.touch(node);
+        }
+        let dt2 = inp.dt * inp.dt;
+        for a in &sys.active {
+            let s = &mut interfaces[a.owner].slaves[a.slave];
+            if s.surface {
+                surface::record(s, a, inp, r);
+                continue;
+            }
+            let corr = |k: u32| {
+                let k = k as usize;
+                axpy(inp.u_pred[k], dt2 * inp.inv_mass[k], r[k])
+            };
+            let rel_new = sub(sub(corr(s.partner), corr(s.node)), s.rel0);
+            let state = a.state();
+            let open = state == PairState::Separated;
+            let out = PairOutcome {
+                r: a.r,
+                state,
+                normal: if open { 0.0 } else { -dot(a.r, a.n) },
+                tangential: if open { [0.0; 3] } else { tangential(a.r, a.n) },
+            };
+            let started = s.state;
+            record_pair(s, &out, started, rel_new, a.dn);
+        }
+        self.scratch = sys;
+        true
+    }
+
+    /// The sweeps of a group for one step (module documentation): block Gauss–Seidel over
+    /// its interfaces until the net contact forces of its nodes settle.
+    fn sweep_step(
+        &mut self,
+        interfaces: &mut [Interface],
+        members: &[usize],
+        inp: &ContactStepInput,
+        r: &mut [[f64; 3]],
+    ) -> Result<()> {
         // The group's nodes are the ones touched from here on (groups share no node).
         let first = self.touched.len();
         let mut change: f64 = 0.0;
         let mut late_from = u64::MAX;
-        self.joint_stats.group_steps += 1;
         for sweep in 0..MAX_SWEEPS {
             self.joint_stats.sweeps += 1;
             let count = sweep as u64 + 1;
@@ -204,4 +326,47 @@ impl ContactSystem {
             ),
         })
     }
+}
+
+/// The constraint of pair record `si` of `iface` (interface number `owner`) in a group's
+/// direct solve: node a against its partner b as a one-node face (φ = (1, 0, 0, 0)), so that
+/// d = x_b − x_a and the force is +R on a, −R on b, with the normal, strengths and bond of
+/// the pair and d̄ from the predictor and the forces already in `r`. None for a pair whose
+/// nodes are both fixed (its gap recorded, no force: as `point_to_point`).
+fn pair_constraint(
+    iface: &mut Interface,
+    owner: usize,
+    si: usize,
+    inp: &ContactStepInput,
+    r: &[[f64; 3]],
+) -> Option<surface::Active> {
+    let dt2 = inp.dt * inp.dt;
+    let params = PairParams {
+        mu_s: iface.mu_s,
+        mu_d: iface.mu_d,
+        shear_capacity: iface.cohesion * iface.slaves[si].area,
+        tensile_capacity: iface.tensile * iface.slaves[si].area,
+    };
+    let s = &mut iface.slaves[si];
+    let (a, b) = (s.node as usize, s.partner as usize);
+    let (wa, wb) = (inp.inv_mass[a], inp.inv_mass[b]);
+    let ua = axpy(inp.u_pred[a], dt2 * wa, r[a]);
+    let ub = axpy(inp.u_pred[b], dt2 * wb, r[b]);
+    let rel_pred = sub(sub(ub, ua), s.rel0);
+    let rel_old = sub(sub(inp.u_old[b], inp.u_old[a]), s.rel0);
+    if wa + wb <= 0.0 {
+        s.gap = dot(rel_pred, s.normal);
+        return None;
+    }
+    Some(surface::Active::new(
+        (owner, si),
+        s.node,
+        [s.partner, NONE, NONE, NONE],
+        [1.0, 0.0, 0.0, 0.0],
+        s.normal,
+        rel_pred,
+        rel_old,
+        params,
+        s.state == PairState::Bonded,
+    ))
 }

@@ -86,6 +86,10 @@ enum Pairs {
     /// system of the `compute` call given (the stamp): the only pairs whose inputs the
     /// other parts of a group change within the step.
     Coupled(u64),
+    /// The pairs that nothing else in a group changes within the step: not at a junction
+    /// and, where the interface has a point-to-surface system in the `compute` call given
+    /// (the stamp), sharing no node with it. Solved on their own by the joint solve.
+    Alone(Option<u64>),
 }
 
 impl Pairs {
@@ -95,13 +99,15 @@ impl Pairs {
             Pairs::All => true,
             Pairs::Junctions => s.junction,
             Pairs::Coupled(stamp) => s.junction || faces.coupled(stamp, k),
+            Pairs::Alone(None) => !s.junction,
+            Pairs::Alone(Some(stamp)) => !(s.junction || faces.coupled(stamp, k)),
         }
     }
 }
 
 /// Work counts of the joint solves of groups of interfaces that meet (`joint.rs`) since the
 /// model was built or restored.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, serde::Serialize)]
 pub struct JointStats {
     /// Steps of a group (one per group per step).
     pub group_steps: u64,
@@ -113,6 +119,16 @@ pub struct JointStats {
     pub pair_solves: u64,
     /// Pair solves in the sweeps after the first of the groups' steps.
     pub late_pair_solves: u64,
+    /// Steps of a group settled by its direct solve (the rest fell back to the sweeps).
+    pub direct: u64,
+    /// Steps of a group whose direct solve failed and that fell back to the sweeps.
+    pub fallbacks: u64,
+    /// Most constraints (pairs and point-to-surface nodes) of one direct solve.
+    pub max_system: u64,
+    /// Most active-set solves of one direct solve.
+    pub max_active_set_solves: u64,
+    /// Most polish sweeps of one direct solve.
+    pub max_polish_sweeps: u64,
 }
 
 /// Marker for "no node / no face".
@@ -139,6 +155,9 @@ pub struct ContactSystem {
     joint_prev: Vec<[f64; 3]>,
     /// Work of the joint solves (see [`JointStats`]).
     joint_stats: JointStats,
+    /// Groups are solved directly (`joint.rs`), the sweeps only as the fallback; false:
+    /// sweeps only (tests of the fallback).
+    direct_joint: bool,
 }
 
 impl ContactSystem {
@@ -174,6 +193,7 @@ impl ContactSystem {
             unsettled: (0, 0.0),
             joint_prev: Vec::new(),
             joint_stats: JointStats::default(),
+            direct_joint: true,
         })
     }
 
@@ -452,9 +472,6 @@ impl ContactSystem {
             let out = solve_pair(state, &params, &pin);
             r[a] = geom::add(r[a], out.r);
             r[b] = sub(r[b], out.r);
-            s.force = out.r;
-            s.slid |= out.state == PairState::Sliding;
-            s.broke |= state == PairState::Bonded && out.state != PairState::Bonded;
             let m = &mut self.mark;
             for k in [s.node, s.partner] {
                 if m[k as usize] != self.stamp {
@@ -463,17 +480,33 @@ impl ContactSystem {
                 }
             }
             let rel_new = axpy(rel_pred, -w_sum * dt2, out.r);
-            let dslip = tangential(sub(rel_new, rel_old), s.normal);
-            s.state = out.state;
-            s.gap = dot(rel_new, s.normal);
-            s.slip = tangential(rel_new, s.normal);
-            if out.state == PairState::Sliding {
-                s.acc_slip += norm(dslip);
-            }
-            s.normal_force = out.normal;
-            s.tangential = out.tangential;
+            record_pair(s, &out, state, rel_new, rel_old);
         }
     }
+}
+
+/// The record of a pair after its solve (`out`: force on node a, state, normal and
+/// tangential force), the state it started the solve in, its relative displacements after
+/// the step and at tⁿ (less δ₀).
+fn record_pair(
+    s: &mut SlaveNode,
+    out: &PairOutcome,
+    started: PairState,
+    rel_new: [f64; 3],
+    rel_old: [f64; 3],
+) {
+    s.force = out.r;
+    s.slid |= out.state == PairState::Sliding;
+    s.broke |= started == PairState::Bonded && out.state != PairState::Bonded;
+    let dslip = tangential(sub(rel_new, rel_old), s.normal);
+    s.state = out.state;
+    s.gap = dot(rel_new, s.normal);
+    s.slip = tangential(rel_new, s.normal);
+    if out.state == PairState::Sliding {
+        s.acc_slip += norm(dslip);
+    }
+    s.normal_force = out.normal;
+    s.tangential = out.tangential;
 }
 
 /// Large slip: a pair whose net slip exceeds its threshold contacts the faces of b from

@@ -56,13 +56,21 @@ use crate::error::{DcfmError, Result};
 /// Reusable buffers of the point-to-surface solve.
 #[derive(Clone, Debug, Default)]
 pub struct Scratch {
-    grid: FaceGrid,
-    active: Vec<Active>,
+    pub(super) grid: FaceGrid,
+    pub(super) active: Vec<Active>,
     h: Vec<(usize, usize, f64)>,
     by_master: Vec<(u32, usize, f64)>,
     triplets: Vec<Triplet<usize, usize, f64>>,
     /// Nodes whose force the last solve wrote.
     pub(super) touched: Vec<u32>,
+    /// The system is the joint system of interfaces that meet (`joint.rs`): direct solves
+    /// regularised ([`REGULARISATION`]), checked for constraints that cannot all hold
+    /// ([`INCONSISTENT`]), polish settled on the nodes' net forces.
+    pub(super) joint: bool,
+    /// Diagonal term of the direct solves (0 unless `joint`).
+    reg: f64,
+    /// Net contact force per node of the previous polish sweep (`net_settled`).
+    net_prev: Vec<[f64; 3]>,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -72,20 +80,27 @@ enum Mode {
     Open,
 }
 
+/// One constraint of a contact system: a node in point-to-surface contact (its force on
+/// `node`, −φⱼ times it on the face nodes) or, in the joint solve of interfaces that meet
+/// (`joint.rs`), a node pair (the partner as a one-node "face", φ = (1, 0, 0, 0)).
 #[derive(Clone, Copy, Debug)]
-struct Active {
-    slave: usize,
-    node: u32,
-    face: [u32; 4],
-    phi: [f64; 4],
-    n: [f64; 3],
+pub(super) struct Active {
+    /// Interface (index in the model) and record (index in its `slaves`) it belongs to.
+    pub(super) owner: usize,
+    pub(super) slave: usize,
+    pub(super) node: u32,
+    pub(super) face: [u32; 4],
+    pub(super) phi: [f64; 4],
+    pub(super) n: [f64; 3],
+    /// Predicted relative position d̄ (no force of this system).
+    pub(super) dbar: [f64; 3],
     gbar: f64,
     rhs: [f64; 3],
-    dn: [f64; 3],
+    pub(super) dn: [f64; 3],
     mode: Mode,
     dir: [f64; 3],
     offset: usize,
-    r: [f64; 3],
+    pub(super) r: [f64; 3],
     /// Released in tension during this step (never re-activated in the same step).
     released: bool,
     /// Nothing can move this node (H diagonal zero): no force.
@@ -93,7 +108,12 @@ struct Active {
     /// (H R)ᵢ of the last solve.
     hr: [f64; 3],
     /// Has slid in this step.
-    slid: bool,
+    pub(super) slid: bool,
+    /// Friction and, while bonded, cohesive strengths (eqs. (12)–(14)).
+    params: PairParams,
+    /// Cohesion intact (a bonded pair: holds its gap at tⁿ, carries tension up to its
+    /// tensile capacity); lost for the rest of the step once broken.
+    pub(super) bonded: bool,
 }
 
 /// One contact group given directly: the pure kernel behind [`solve`], public for tests and
@@ -114,33 +134,46 @@ pub fn solve_group(
         [f64; 3],
     )],
 ) -> std::result::Result<Vec<([f64; 3], PairState)>, String> {
-    // Build a scratch set of actives; inverse masses of face nodes come per node.
+    // Inverse masses per node: the contact nodes are numbered after every face node (each
+    // its own node, shared with nothing).
     let mut w_of: HashMap<u32, f64> = HashMap::new();
+    let first = nodes
+        .iter()
+        .flat_map(|t| t.3)
+        .filter(|&j| j != NONE)
+        .max()
+        .map_or(0, |j| j + 1);
+    let params = PairParams {
+        mu_s,
+        mu_d,
+        shear_capacity: 0.0,
+        tensile_capacity: 0.0,
+    };
     let mut active = Vec::with_capacity(nodes.len());
-    for (i, &(_, wf, phi, face, n, dbar, dn)) in nodes.iter().enumerate() {
+    for (i, &(w, wf, phi, face, n, dbar, dn)) in nodes.iter().enumerate() {
         for j in 0..4 {
             w_of.insert(face[j], wf[j]);
         }
-        active.push(new_active(i, NONE, face, phi, n, dbar, dn));
+        let node = first + i as u32;
+        w_of.insert(node, w);
+        active.push(Active::new(
+            (0, i),
+            node,
+            face,
+            phi,
+            n,
+            dbar,
+            dn,
+            params,
+            false,
+        ));
     }
-    let w_slave: Vec<f64> = nodes.iter().map(|t| t.0).collect();
     let mut scratch = Scratch {
         active,
         ..Default::default()
     };
-    solve_active(&mut scratch, dt, mu_s, mu_d, &|i| w_slave[i], &|j| w_of[&j])?;
-    Ok(scratch
-        .active
-        .iter()
-        .map(|a| {
-            let st = match a.mode {
-                Mode::Stick => PairState::Stick,
-                Mode::Slide => PairState::Sliding,
-                Mode::Open => PairState::Separated,
-            };
-            (a.r, st)
-        })
-        .collect())
+    solve_active(&mut scratch, dt, &|j| w_of[&j])?;
+    Ok(scratch.active.iter().map(|a| (a.r, a.state())).collect())
 }
 
 /// Forces on the four face nodes from the force `r` on the contact node: −φⱼ r. They sum
@@ -150,53 +183,103 @@ pub fn distribute(phi: &[f64; 4], r: [f64; 3]) -> [[f64; 3]; 4] {
     phi.map(|p| scale(-p, r))
 }
 
-fn new_active(
-    slave: usize,
-    node: u32,
-    face: [u32; 4],
-    phi: [f64; 4],
-    n: [f64; 3],
-    dbar: [f64; 3],
-    dn: [f64; 3],
-) -> Active {
-    // Gap to close: down to zero, or, where the node already penetrates at tⁿ (a change of
-    // contact face, the coupling of neighbours), down to that penetration: it is held, not
-    // pushed out, so that contact forces never do positive work.
-    let gbar = dot(dbar, n) - dot(dn, n).min(0.0);
-    let rhs = axpy(tangential(sub(dbar, dn), n), gbar, n);
-    Active {
-        slave,
-        node,
-        face,
-        phi,
-        n,
-        gbar,
-        rhs,
-        dn,
-        mode: if gbar < 0.0 { Mode::Stick } else { Mode::Open },
-        dir: [0.0; 3],
-        offset: 0,
-        r: [0.0; 3],
-        released: false,
-        fixed: false,
-        hr: [0.0; 3],
-        slid: false,
+impl Active {
+    /// A constraint of record `owner = (interface, slave)` on `node` against the point
+    /// Σ φⱼ x_face[j], with contact normal `n`, predicted relative position `dbar` = d̄,
+    /// relative position at tⁿ `dn`, its strengths and whether its bond is intact.
+    #[allow(clippy::too_many_arguments)]
+    pub(super) fn new(
+        owner: (usize, usize),
+        node: u32,
+        face: [u32; 4],
+        phi: [f64; 4],
+        n: [f64; 3],
+        dbar: [f64; 3],
+        dn: [f64; 3],
+        params: PairParams,
+        bonded: bool,
+    ) -> Active {
+        let mut a = Active {
+            owner: owner.0,
+            slave: owner.1,
+            node,
+            face,
+            phi,
+            n,
+            dbar,
+            gbar: 0.0,
+            rhs: [0.0; 3],
+            dn,
+            mode: Mode::Open,
+            dir: [0.0; 3],
+            offset: 0,
+            r: [0.0; 3],
+            released: false,
+            fixed: false,
+            hr: [0.0; 3],
+            slid: false,
+            params,
+            bonded,
+        };
+        a.set_targets();
+        a.mode = if bonded || a.gbar < 0.0 {
+            Mode::Stick
+        } else {
+            Mode::Open
+        };
+        a
+    }
+
+    /// Gap to close and right-hand side of eqs. (20)–(21). The normal target is zero, or,
+    /// where the node already penetrates at tⁿ (a change of contact face, the coupling of
+    /// neighbours), that penetration: it is held, not pushed out, so that contact forces
+    /// never do positive work; a bonded pair holds its gap at tⁿ whatever its sign (as
+    /// `pair::solve_pair`).
+    fn set_targets(&mut self) {
+        let gap_old = dot(self.dn, self.n);
+        let target = if self.bonded {
+            gap_old
+        } else {
+            gap_old.min(0.0)
+        };
+        self.gbar = dot(self.dbar, self.n) - target;
+        self.rhs = axpy(
+            tangential(sub(self.dbar, self.dn), self.n),
+            self.gbar,
+            self.n,
+        );
+    }
+
+    /// The bond breaks (for the rest of the step): contact without cohesion from now on.
+    fn lose_bond(&mut self) {
+        if self.bonded {
+            self.bonded = false;
+            self.set_targets();
+        }
+    }
+
+    /// State of the constraint after the solve.
+    pub(super) fn state(&self) -> PairState {
+        match self.mode {
+            Mode::Stick if self.bonded => PairState::Bonded,
+            Mode::Stick => PairState::Stick,
+            Mode::Slide => PairState::Sliding,
+            Mode::Open => PairState::Separated,
+        }
     }
 }
 
-/// Assemble Hᵢₖ (sorted, merged) for the active set.
-fn assemble_h(
-    s: &mut Scratch,
-    dt2: f64,
-    w_slave: &dyn Fn(usize) -> f64,
-    w_node: &dyn Fn(u32) -> f64,
-) {
+/// Assemble Hᵢₖ = Δt² Σⱼ wⱼ eᵢ(j) eₖ(j) (sorted, merged) for the active set, summed over
+/// the nodes j that constraints i and k share, with eᵢ = −1 on the contact node and φⱼ on
+/// the face nodes (eqs. (17)–(18), written for any constraints that share nodes).
+fn assemble_h(s: &mut Scratch, dt2: f64, w_node: &dyn Fn(u32) -> f64) {
     s.h.clear();
     s.by_master.clear();
     for (i, a) in s.active.iter().enumerate() {
-        s.h.push((i, i, dt2 * w_slave(a.slave)));
+        s.h.push((i, i, 0.0));
+        s.by_master.push((a.node, i, -1.0));
         for j in 0..4 {
-            if a.phi[j] != 0.0 {
+            if a.phi[j] != 0.0 && a.face[j] != NONE {
                 s.by_master.push((a.face[j], i, a.phi[j]));
             }
         }
@@ -221,7 +304,7 @@ fn assemble_h(
         }
         start = end;
     }
-    s.h.sort_unstable_by_key(|x| (x.0, x.1));
+    s.h.sort_by_key(|x| (x.0, x.1));
     let mut out = 0;
     for p in 0..s.h.len() {
         if out > 0 && s.h[out - 1].0 == s.h[p].0 && s.h[out - 1].1 == s.h[p].1 {
@@ -234,27 +317,60 @@ fn assemble_h(
     s.h.truncate(out);
 }
 
-/// Active-set loop over the H system; fills `a.r` and `a.mode` of every active node.
-fn solve_active(
+/// Active-set loop over the H system, then the polish; fills `a.r` and `a.mode` of every
+/// active constraint. Returns the number of direct solves and of polish sweeps. Also the
+/// joint system of a group of interfaces (`joint.rs`, with `Scratch::joint` set).
+pub(super) fn solve_active(
     s: &mut Scratch,
     dt: f64,
-    mu_s: f64,
-    mu_d: f64,
-    w_slave: &dyn Fn(usize) -> f64,
     w_node: &dyn Fn(u32) -> f64,
-) -> std::result::Result<usize, String> {
-    let iters = active_set(s, dt, mu_s, mu_d, w_slave, w_node)?;
-    polish(s, dt, mu_s, mu_d)?;
-    Ok(iters)
+) -> std::result::Result<(usize, usize), String> {
+    let iters = active_set(s, dt, w_node)?;
+    if s.joint {
+        // Forces far beyond what any constraint needs on its own come from constraints
+        // that cannot all hold (a loop of pairs whose gap targets disagree): no solution
+        // exists; the caller falls back to the sweeps.
+        let mut alone: f64 = 0.0;
+        for &(i, k, h) in &s.h {
+            let a = &s.active[i];
+            if i == k && h > 0.0 && !a.fixed {
+                alone = alone.max(norm(a.rhs) / h);
+            }
+        }
+        let fmax = s.active.iter().map(|a| norm(a.r)).fold(0.0, f64::max);
+        if fmax > INCONSISTENT * alone {
+            return Err(format!(
+                "the direct solve gave forces {:.1e} times what any constraint needs alone \
+                 (constraints that cannot all hold)",
+                fmax / alone.max(f64::MIN_POSITIVE)
+            ));
+        }
+    }
+    let sweeps = polish(s, dt)?;
+    Ok((iters, sweeps))
 }
 
-/// Projected Gauss–Seidel sweeps from the active-set solution until every node satisfies
-/// its own contact law given the forces of the others (the same rules as a pair, with
-/// Hᵢᵢ/Δt² in place of w_a + w_b). Where the active-set solution is consistent — the usual
-/// case — the first sweep changes nothing. Where coupled friction made it inconsistent
-/// (a sliding node whose friction would reverse its own slip) the sweeps settle it, so that
-/// every sliding node ends with T along its slip and the forces do no positive work.
-fn polish(s: &mut Scratch, dt: f64, mu_s: f64, mu_d: f64) -> std::result::Result<usize, String> {
+/// Relative Tikhonov term added to the diagonal of H in the direct solves of a joint
+/// system (`Scratch::joint`): constraints that close a loop (three interfaces pairing three
+/// coincident nodes) make H singular, with the force circulating round the loop as its
+/// null space; the term picks the split of least norm. The polish then works on H itself.
+const REGULARISATION: f64 = 1e-11;
+
+/// Largest force of a joint system's direct solve, relative to the largest force that a
+/// constraint would need on its own (|bᵢ|/Hᵢᵢ), beyond which its constraints are taken as
+/// ones that cannot all hold.
+const INCONSISTENT: f64 = 1e6;
+
+/// Projected Gauss–Seidel sweeps from the active-set solution until every constraint
+/// satisfies its own contact law given the forces of the others (the rules of a pair,
+/// `pair::solve_pair`, with Hᵢᵢ/Δt² in place of w_a + w_b). Where the active-set solution
+/// is consistent — the usual case — the first sweep changes nothing. Where coupled friction
+/// made it inconsistent (a sliding node whose friction would reverse its own slip) the
+/// sweeps settle it, so that every sliding node ends with T along its slip and the forces
+/// do no positive work. They stop when no force changes by more than 1e-12 of the largest,
+/// or, in a joint system, when no node's net contact force does (the split of a loop's
+/// forces is free: `joint.rs`).
+fn polish(s: &mut Scratch, dt: f64) -> std::result::Result<usize, String> {
     const MAX_SWEEPS: usize = 2000;
     let m = s.active.len();
     // Row ranges of the sorted H list.
@@ -265,20 +381,8 @@ fn polish(s: &mut Scratch, dt: f64, mu_s: f64, mu_d: f64) -> std::result::Result
     for i in 0..m {
         row[i + 1] += row[i];
     }
-    let params = PairParams {
-        mu_s,
-        mu_d,
-        shear_capacity: 0.0,
-        tensile_capacity: 0.0,
-    };
-    // A node that slid in this step keeps the kinetic coefficient for the rest of the
-    // step: it sticks again only inside the μd cone (static/kinetic switching between
-    // coupled nodes otherwise has no fixed point).
-    let kinetic = PairParams {
-        mu_s: mu_d,
-        ..params
-    };
     let fmax = s.active.iter().map(|a| norm(a.r)).fold(0.0, f64::max);
+    s.net_prev.clear();
     for sweep in 1..=MAX_SWEEPS {
         let mut change: f64 = 0.0;
         let mut scale_f = fmax;
@@ -296,21 +400,34 @@ fn polish(s: &mut Scratch, dt: f64, mu_s: f64, mu_d: f64) -> std::result::Result
                 }
             }
             let a = &s.active[i];
-            if a.mode == Mode::Open && a.gbar - dot(coupled, a.n) >= 0.0 {
+            if a.mode == Mode::Open && !a.bonded && a.gbar - dot(coupled, a.n) >= 0.0 {
                 continue;
             }
-            // Local problem: relative position after the step d = d̃ − Hᵢᵢ Rᵢ.
-            let target = dot(a.dn, a.n).min(0.0);
-            let dtilde = sub(axpy(a.rhs, target, a.n), coupled); // = P_t(d̄ − dⁿ) + (d̄·n) n − Σ H R
-            let dtilde = add(dtilde, tangential(a.dn, a.n));
+            // A constraint that slid in this step keeps the kinetic coefficient for the
+            // rest of the step: it sticks again only inside the μd cone (static/kinetic
+            // switching between coupled nodes otherwise has no fixed point).
+            let params = if a.slid {
+                PairParams {
+                    mu_s: a.params.mu_d,
+                    ..a.params
+                }
+            } else {
+                a.params
+            };
+            let state = if a.bonded {
+                PairState::Bonded
+            } else {
+                PairState::Stick
+            };
+            // Local problem: relative position after the step d = (d̄ − Σₖ Hᵢₖ Rₖ) − Hᵢᵢ Rᵢ.
             let out = solve_pair(
-                PairState::Stick,
-                if a.slid { &kinetic } else { &params },
+                state,
+                &params,
                 &PairInput {
                     n: a.n,
                     w_sum: hii / (dt * dt),
                     dt,
-                    rel_pred: dtilde,
+                    rel_pred: sub(a.dbar, coupled),
                     rel_old: a.dn,
                 },
             );
@@ -318,6 +435,9 @@ fn polish(s: &mut Scratch, dt: f64, mu_s: f64, mu_d: f64) -> std::result::Result
             change = change.max(norm(sub(out.r, a.r)));
             scale_f = scale_f.max(norm(out.r));
             a.r = out.r;
+            if out.state != PairState::Bonded {
+                a.lose_bond();
+            }
             a.mode = match out.state {
                 PairState::Sliding => {
                     a.slid = true;
@@ -330,10 +450,43 @@ fn polish(s: &mut Scratch, dt: f64, mu_s: f64, mu_d: f64) -> std::result::Result
         if change <= 1e-12 * scale_f.max(f64::MIN_POSITIVE) {
             return Ok(sweep);
         }
+        if s.joint && net_settled(s, sweep == 1) {
+            return Ok(sweep);
+        }
     }
     Err(format!(
         "friction of {m} coupled nodes did not settle in {MAX_SWEEPS} Gauss–Seidel sweeps"
     ))
+}
+
+/// Net contact force of every node of the system (Σᵢ −eᵢ(j) Rᵢ, `assemble_h`) against the
+/// previous sweep's: whether none changed by more than 1e-12 of the largest force (always
+/// false on the `first` sweep, which records them).
+fn net_settled(s: &mut Scratch, first: bool) -> bool {
+    let mut change: f64 = 0.0;
+    let mut fmax = s.active.iter().map(|a| norm(a.r)).fold(0.0, f64::max);
+    let mut g = 0;
+    let mut start = 0;
+    while start < s.by_master.len() {
+        let node = s.by_master[start].0;
+        let mut net = [0.0; 3];
+        let mut end = start;
+        while end < s.by_master.len() && s.by_master[end].0 == node {
+            let (_, i, e) = s.by_master[end];
+            net = axpy(net, -e, s.active[i].r);
+            end += 1;
+        }
+        if first {
+            s.net_prev.push(net);
+        } else {
+            change = change.max(norm(sub(net, s.net_prev[g])));
+            s.net_prev[g] = net;
+        }
+        fmax = fmax.max(norm(net));
+        g += 1;
+        start = end;
+    }
+    !first && change <= 1e-12 * fmax.max(f64::MIN_POSITIVE)
 }
 
 /// All closed nodes stick: (H R)ᵢ = bᵢ with the scalar, symmetric positive definite H acting
@@ -344,6 +497,7 @@ fn stick_solve(s: &mut Scratch, m: usize) -> bool {
     for &(i, k, h) in &s.h {
         let (ai, ak) = (&s.active[i], &s.active[k]);
         if ai.mode == Mode::Stick && ak.mode == Mode::Stick && ai.offset >= ak.offset {
+            let h = if i == k { h + s.reg } else { h };
             s.triplets
                 .push(Triplet::new(ai.offset / 3, ak.offset / 3, h));
         }
@@ -383,6 +537,7 @@ fn general_solve(s: &mut Scratch, size: usize) -> bool {
     for &(i, k, h) in &s.h {
         let (ai, ak) = (&s.active[i], &s.active[k]);
         let (oi, ok) = (ai.offset, ak.offset);
+        let h = if i == k { h + s.reg } else { h };
         match (ai.mode, ak.mode) {
             (Mode::Open, _) | (_, Mode::Open) => {}
             (Mode::Stick, Mode::Stick) => {
@@ -444,7 +599,7 @@ fn singular_fallback(s: &mut Scratch, iter: usize) -> usize {
     for a in s.active.iter_mut() {
         a.r = [0.0; 3];
         a.released = false;
-        a.mode = if a.gbar < 0.0 && !a.fixed {
+        a.mode = if (a.bonded || a.gbar < 0.0) && !a.fixed {
             Mode::Stick
         } else {
             Mode::Open
@@ -456,20 +611,24 @@ fn singular_fallback(s: &mut Scratch, iter: usize) -> usize {
 fn active_set(
     s: &mut Scratch,
     dt: f64,
-    mu_s: f64,
-    mu_d: f64,
-    w_slave: &dyn Fn(usize) -> f64,
     w_node: &dyn Fn(u32) -> f64,
 ) -> std::result::Result<usize, String> {
     let m = s.active.len();
     // Nodes that nothing can move get no force.
-    assemble_h(s, dt * dt, w_slave, w_node);
+    assemble_h(s, dt * dt, w_node);
+    let mut diag: f64 = 0.0;
     for &(i, k, h) in &s.h {
-        if i == k && h <= 0.0 {
-            s.active[i].mode = Mode::Open;
-            s.active[i].fixed = true;
+        if i == k {
+            diag = diag.max(h);
+            if h <= 0.0 {
+                let a = &mut s.active[i];
+                a.mode = Mode::Open;
+                a.fixed = true;
+                a.bonded = false;
+            }
         }
     }
+    s.reg = if s.joint { REGULARISATION * diag } else { 0.0 };
     let max_iter = 3 * m + 2;
     for iter in 1..=max_iter {
         let mut size = 0;
@@ -494,8 +653,15 @@ fn active_set(
             if a.mode == Mode::Open {
                 continue;
             }
+            // The checks of eqs. (12)–(15), as `pair::solve_pair`.
             let lambda = -dot(a.r, a.n);
+            let t = tangential(a.r, a.n);
+            let tm = norm(t);
             if lambda < 0.0 {
+                if a.bonded && (tm * tm + lambda * lambda).sqrt() <= a.params.tensile_capacity {
+                    continue;
+                }
+                a.lose_bond();
                 a.mode = Mode::Open;
                 a.r = [0.0; 3];
                 a.released = true;
@@ -503,13 +669,17 @@ fn active_set(
                 continue;
             }
             if a.mode == Mode::Stick {
-                let t = tangential(a.r, a.n);
-                let tm = norm(t);
-                let mu = if a.slid { mu_d } else { mu_s };
-                if tm > mu * lambda * (1.0 + 1e-12) {
+                let mu = if a.slid { a.params.mu_d } else { a.params.mu_s };
+                let cohesion = if a.bonded {
+                    a.params.shear_capacity
+                } else {
+                    0.0
+                };
+                if tm > (mu * lambda + cohesion) * (1.0 + 1e-12) {
+                    a.lose_bond();
                     a.mode = Mode::Slide;
                     a.slid = true;
-                    a.dir = axpy(scale(-1.0, a.n), mu_d / tm, t);
+                    a.dir = axpy(scale(-1.0, a.n), a.params.mu_d / tm, t);
                     changed = true;
                 }
             }
@@ -596,7 +766,12 @@ impl StepFaces {
 
 /// The contact search of `iface` for the `compute` call `stamp` (kept in `iface.faces`):
 /// done on the first call of the step, the stored result returned on the later ones.
-fn step_faces(iface: &mut Interface, inp: &ContactStepInput, stamp: u64, grid: &mut FaceGrid) {
+pub(super) fn step_faces(
+    iface: &mut Interface,
+    inp: &ContactStepInput,
+    stamp: u64,
+    grid: &mut FaceGrid,
+) {
     if iface.faces.stamp == stamp && stamp != 0 {
         return;
     }
@@ -666,48 +841,14 @@ pub(super) fn solve(
     r: &mut [[f64; 3]],
     s: &mut Scratch,
 ) -> Result<()> {
-    let dt2 = inp.dt * inp.dt;
     s.touched.clear();
     s.active.clear();
+    s.joint = false;
     step_faces(iface, inp, stamp, &mut s.grid);
-    let capture = iface.faces.capture;
-    for (si, sl) in iface.slaves.iter_mut().enumerate() {
-        if !sl.surface || !sl.active {
-            continue;
+    for si in 0..iface.slaves.len() {
+        if let Some(a) = constraint(iface, 0, si, inp, r) {
+            s.active.push(a);
         }
-        let Some(Touch {
-            face: fi,
-            xi,
-            eta,
-            phi,
-            n,
-            dn,
-        }) = iface.faces.touches[si]
-        else {
-            sl.face = NONE;
-            sl.state = PairState::Separated;
-            sl.gap = capture;
-            sl.normal_force = 0.0;
-            sl.tangential = [0.0; 3];
-            continue;
-        };
-        let face = iface.b_faces[fi as usize];
-        let pred = |k: u32| -> [f64; 3] {
-            let k = k as usize;
-            add(
-                inp.coords[k],
-                axpy(inp.u_pred[k], dt2 * inp.inv_mass[k], r[k]),
-            )
-        };
-        let xbar = face.map(pred);
-        let cbar = (0..4).fold([0.0; 3], |acc, j| axpy(acc, phi[j], xbar[j]));
-        let dbar = sub(cbar, add(pred(sl.node), sl.rel0));
-        sl.face = fi;
-        sl.xi = [xi, eta];
-        sl.gap_start = dot(dn, n);
-        let mut a = new_active(si, sl.node, face, phi, n, dbar, dn);
-        a.slid = sl.slid;
-        s.active.push(a);
     }
     if s.active.iter().all(|a| a.mode == Mode::Open) {
         for a in &s.active {
@@ -720,17 +861,8 @@ pub(super) fn solve(
         }
         return Ok(());
     }
-    let slaves = &iface.slaves;
     let w = inp.inv_mass;
-    solve_active(
-        s,
-        inp.dt,
-        iface.mu_s,
-        iface.mu_d,
-        &|i| w[slaves[i].node as usize],
-        &|j| w[j as usize],
-    )
-    .map_err(|message| DcfmError::Contact {
+    solve_active(s, inp.dt, &|j| w[j as usize]).map_err(|message| DcfmError::Contact {
         interface: iface.name.clone(),
         message: format!(
             "step {} (t = {:.6e} s): point-to-surface: {message}",
@@ -739,46 +871,119 @@ pub(super) fn solve(
     })?;
     // Forces: Rᵢ on the node, −φⱼ Rᵢ on the face nodes.
     for a in &s.active {
-        if a.mode == Mode::Open {
-            continue;
-        }
-        let i = a.node as usize;
-        r[i] = add(r[i], a.r);
-        s.touched.push(a.node);
-        for (j, f) in distribute(&a.phi, a.r).into_iter().enumerate() {
-            let k = a.face[j] as usize;
-            r[k] = add(r[k], f);
-            s.touched.push(a.face[j]);
-        }
+        apply_force(a, r, &mut s.touched);
     }
-    // Records: corrected gap, slip increment, forces, states.
     for a in &s.active {
-        let sl = &mut iface.slaves[a.slave];
-        let corr = |k: u32| -> [f64; 3] {
-            let k = k as usize;
-            add(
-                inp.coords[k],
-                axpy(inp.u_pred[k], dt2 * inp.inv_mass[k], r[k]),
-            )
-        };
-        let c = (0..4).fold([0.0; 3], |acc, j| axpy(acc, a.phi[j], corr(a.face[j])));
-        let d = sub(c, add(corr(a.node), sl.rel0));
-        let dslip = tangential(sub(d, a.dn), a.n);
-        sl.gap = dot(d, a.n);
-        sl.slip = add(sl.slip, dslip);
-        let lambda = -dot(a.r, a.n);
-        sl.normal_force = if a.mode == Mode::Open { 0.0 } else { lambda };
-        sl.force = a.r;
-        sl.slid |= a.slid;
-        sl.tangential = tangential(a.r, a.n);
-        sl.state = match a.mode {
-            Mode::Stick => PairState::Stick,
-            Mode::Slide => {
-                sl.acc_slip += norm(dslip);
-                PairState::Sliding
-            }
-            Mode::Open => PairState::Separated,
-        };
+        record(&mut iface.slaves[a.slave], a, inp, r);
     }
     Ok(())
+}
+
+/// The constraint of record `si` of `iface` (interface number `owner`) if it is a node in
+/// point-to-surface contact that touches a face of b in this step (the search of
+/// [`step_faces`], done before), with d̄ from the predictor and the forces already in `r`.
+/// A node that touches no face is recorded as separated, with the capture distance as its
+/// gap.
+pub(super) fn constraint(
+    iface: &mut Interface,
+    owner: usize,
+    si: usize,
+    inp: &ContactStepInput,
+    r: &[[f64; 3]],
+) -> Option<Active> {
+    let dt2 = inp.dt * inp.dt;
+    let capture = iface.faces.capture;
+    let sl = &mut iface.slaves[si];
+    if !sl.surface || !sl.active {
+        return None;
+    }
+    let Some(Touch {
+        face: fi,
+        xi,
+        eta,
+        phi,
+        n,
+        dn,
+    }) = iface.faces.touches[si]
+    else {
+        sl.face = NONE;
+        sl.state = PairState::Separated;
+        sl.gap = capture;
+        sl.normal_force = 0.0;
+        sl.tangential = [0.0; 3];
+        return None;
+    };
+    let face = iface.b_faces[fi as usize];
+    let pred = |k: u32| -> [f64; 3] {
+        let k = k as usize;
+        add(
+            inp.coords[k],
+            axpy(inp.u_pred[k], dt2 * inp.inv_mass[k], r[k]),
+        )
+    };
+    let xbar = face.map(pred);
+    let cbar = (0..4).fold([0.0; 3], |acc, j| axpy(acc, phi[j], xbar[j]));
+    let dbar = sub(cbar, add(pred(sl.node), sl.rel0));
+    sl.face = fi;
+    sl.xi = [xi, eta];
+    sl.gap_start = dot(dn, n);
+    let params = PairParams {
+        mu_s: iface.mu_s,
+        mu_d: iface.mu_d,
+        shear_capacity: 0.0,
+        tensile_capacity: 0.0,
+    };
+    let mut a = Active::new((owner, si), sl.node, face, phi, n, dbar, dn, params, false);
+    a.slid = sl.slid;
+    Some(a)
+}
+
+/// Adds the force of a solved constraint to `r`: Rᵢ on its node, −φⱼ Rᵢ on its face nodes
+/// (a pair's partner: −Rᵢ), and lists the nodes in `touched`.
+pub(super) fn apply_force(a: &Active, r: &mut [[f64; 3]], touched: &mut Vec<u32>) {
+    if a.mode == Mode::Open {
+        return;
+    }
+    let i = a.node as usize;
+    r[i] = add(r[i], a.r);
+    touched.push(a.node);
+    for (j, f) in distribute(&a.phi, a.r).into_iter().enumerate() {
+        if a.phi[j] != 0.0 && a.face[j] != NONE {
+            let k = a.face[j] as usize;
+            r[k] = add(r[k], f);
+            touched.push(a.face[j]);
+        }
+    }
+}
+
+/// The record of a node in point-to-surface contact after its solve, from the corrected
+/// positions (`r` complete): gap, slip increment, forces, state.
+pub(super) fn record(
+    sl: &mut super::SlaveNode,
+    a: &Active,
+    inp: &ContactStepInput,
+    r: &[[f64; 3]],
+) {
+    let dt2 = inp.dt * inp.dt;
+    let corr = |k: u32| -> [f64; 3] {
+        let k = k as usize;
+        add(
+            inp.coords[k],
+            axpy(inp.u_pred[k], dt2 * inp.inv_mass[k], r[k]),
+        )
+    };
+    let c = (0..4).fold([0.0; 3], |acc, j| axpy(acc, a.phi[j], corr(a.face[j])));
+    let d = sub(c, add(corr(a.node), sl.rel0));
+    let dslip = tangential(sub(d, a.dn), a.n);
+    sl.gap = dot(d, a.n);
+    sl.slip = add(sl.slip, dslip);
+    let lambda = -dot(a.r, a.n);
+    sl.normal_force = if a.mode == Mode::Open { 0.0 } else { lambda };
+    sl.force = a.r;
+    sl.slid |= a.slid;
+    sl.tangential = tangential(a.r, a.n);
+    sl.state = a.state();
+    if sl.state == PairState::Sliding {
+        sl.acc_slip += norm(dslip);
+    }
 }

@@ -652,29 +652,75 @@ fn noise(seed: u64) -> f64 {
 #[test]
 fn interfaces_that_meet_are_solved_jointly() {
     let mesh = corner_mesh();
-    let sys = ContactSystem::new(&mesh, &corner_specs(1e12), "t.toml").unwrap();
-    assert_eq!(sys.groups, vec![vec![0, 1, 2]]);
-    let (joint, total) = corner_step(&mesh, sys);
-    assert!(
-        joint <= 1e-13,
-        "largest relative displacement of a pair {joint:e} m"
-    );
-    assert!(
-        total <= 1e-9,
-        "contact forces sum to {total:e} of the largest"
-    );
+    // The direct solve (default) and the sweeps (its fallback) both hold every bonded pair.
+    for direct in [true, false] {
+        let mut sys = ContactSystem::new(&mesh, &corner_specs(1e12), "t.toml").unwrap();
+        assert_eq!(sys.groups, vec![vec![0, 1, 2]]);
+        sys.direct_joint = direct;
+        let (joint, total, stats) = corner_step(&mesh, sys);
+        assert!(
+            joint <= 1e-13,
+            "direct {direct}: largest relative displacement of a pair {joint:e} m"
+        );
+        assert!(
+            total <= 1e-9,
+            "direct {direct}: contact forces sum to {total:e} of the largest"
+        );
+        // The loop of three bonded pairs (a singular system) is solved directly.
+        assert_eq!(stats.direct, u64::from(direct), "{stats:?}");
+        assert_eq!(stats.fallbacks, 0, "{stats:?}");
+    }
     // The same step with the interfaces solved one after the other (each its own group)
     // leaves the junction pairs apart: the test can tell the two solves apart.
     let mut sys = ContactSystem::new(&mesh, &corner_specs(1e12), "t.toml").unwrap();
     sys.groups = vec![vec![0], vec![1], vec![2]];
-    let (sequential, _) = corner_step(&mesh, sys);
+    let (sequential, _, _) = corner_step(&mesh, sys);
     assert!(sequential > 1e-6, "sequential solve: {sequential:e} m");
 }
 
-/// One step of the corner from rest with random predicted motions and unequal masses:
-/// (largest relative displacement of a pair after the step, |Σ R| / largest |R|).
-fn corner_step(mesh: &Mesh, mut sys: ContactSystem) -> (f64, f64) {
+/// Unequal inverse masses and a random predicted motion from rest for the corner meshes
+/// (each component ±0.1 mm), the nodes that `pressed` selects pushed 1 mm down more:
+/// (w, Ū, V̄).
+type Motion = (Vec<f64>, Vec<[f64; 3]>, Vec<[f64; 3]>);
+fn corner_motion(mesh: &Mesh, pressed: impl Fn(usize) -> bool) -> Motion {
     let n = mesh.n_nodes();
+    let w: Vec<f64> = (0..n).map(|k| 1.0 + 0.9 * noise(k as u64)).collect();
+    let u_pred: Vec<[f64; 3]> = (0..n)
+        .map(|k| {
+            let mut u = [0, 1, 2].map(|d| 1e-4 * noise(1000 + 3 * k as u64 + d));
+            if pressed(k) {
+                u[2] -= 1e-3;
+            }
+            u
+        })
+        .collect();
+    let v_pred: Vec<[f64; 3]> = u_pred.iter().map(|u| geom::scale(1.0 / DT, *u)).collect();
+    (w, u_pred, v_pred)
+}
+
+/// One step of `sys` from rest with the motion `m`: the contact forces.
+fn motion_step(mesh: &Mesh, sys: &mut ContactSystem, m: &Motion) -> Vec<[f64; 3]> {
+    let n = mesh.n_nodes();
+    let zero = vec![[0.0; 3]; n];
+    let mut r = vec![[0.0; 3]; n];
+    let inp = ContactStepInput {
+        step: 1,
+        time: 0.0,
+        dt: DT,
+        inv_mass: &m.0,
+        coords: &mesh.coords,
+        u_old: &zero,
+        u_pred: &m.1,
+        v_pred: &m.2,
+    };
+    sys.compute(&inp, &mut r).unwrap();
+    r
+}
+
+/// One step of the corner from rest with random predicted motions and unequal masses:
+/// (largest relative displacement of a pair after the step, |Σ R| / largest |R|, the work
+/// counts of the joint solve).
+fn corner_step(mesh: &Mesh, mut sys: ContactSystem) -> (f64, f64, JointStats) {
     // Junction pairs: the two edge nodes on each of the three interfaces.
     let junctions: usize = sys
         .interfaces
@@ -682,26 +728,11 @@ fn corner_step(mesh: &Mesh, mut sys: ContactSystem) -> (f64, f64) {
         .map(|i| i.slaves.iter().filter(|s| s.junction).count())
         .sum();
     assert_eq!(junctions, 6);
-    // Unequal masses, random predicted motion from rest: every bonded pair must end with
-    // no relative displacement, whatever the order the interfaces are visited in.
-    let w: Vec<f64> = (0..n).map(|k| 1.0 + 0.9 * noise(k as u64)).collect();
-    let u_pred: Vec<[f64; 3]> = (0..n)
-        .map(|k| [0, 1, 2].map(|d| 1e-4 * noise(1000 + 3 * k as u64 + d)))
-        .collect();
-    let v_pred: Vec<[f64; 3]> = u_pred.iter().map(|u| geom::scale(1.0 / DT, *u)).collect();
-    let zero = vec![[0.0; 3]; n];
-    let mut r = vec![[0.0; 3]; n];
-    let inp = ContactStepInput {
-        step: 1,
-        time: 0.0,
-        dt: DT,
-        inv_mass: &w,
-        coords: &mesh.coords,
-        u_old: &zero,
-        u_pred: &u_pred,
-        v_pred: &v_pred,
-    };
-    sys.compute(&inp, &mut r).unwrap();
+    // Every bonded pair must end with no relative displacement, whatever the order the
+    // interfaces are visited in.
+    let m = corner_motion(mesh, |_| false);
+    let r = motion_step(mesh, &mut sys, &m);
+    let (w, u_pred) = (&m.0, &m.1);
     let u = |k: u32| axpy(u_pred[k as usize], DT * DT * w[k as usize], r[k as usize]);
     let mut worst: f64 = 0.0;
     for k in 0..3 {
@@ -715,6 +746,7 @@ fn corner_step(mesh: &Mesh, mut sys: ContactSystem) -> (f64, f64) {
     (
         worst,
         norm(total) / r.iter().map(|f| norm(*f)).fold(0.0, f64::max),
+        sys.joint_stats(),
     )
 }
 
@@ -750,7 +782,14 @@ fn fine_corner_mesh() -> Mesh {
 #[test]
 fn junction_with_a_point_to_surface_node_settles_in_few_sweeps() {
     let mesh = fine_corner_mesh();
-    let mut sys = ContactSystem::new(&mesh, &corner_specs(1e12), "t.toml").unwrap();
+    for direct in [true, false] {
+        junction_with_a_point_to_surface_node(&mesh, direct);
+    }
+}
+
+fn junction_with_a_point_to_surface_node(mesh: &Mesh, direct: bool) {
+    let mut sys = ContactSystem::new(mesh, &corner_specs(1e12), "t.toml").unwrap();
+    sys.direct_joint = direct;
     assert_eq!(sys.groups, vec![vec![0, 1, 2]]);
     let edge_mid = |p: [f64; 3]| {
         (p[0] - 2.0).abs() < 1e-9 && (p[1] - 0.5).abs() < 1e-9 && (p[2] - 1.0).abs() < 1e-9
@@ -765,34 +804,13 @@ fn junction_with_a_point_to_surface_node_settles_in_few_sweeps() {
     // Large slip: the switch of `apply_switches`.
     sys.interfaces[0].slaves[k].surface = true;
     sys.interfaces[0].slaves[k].partner = NONE;
-    let n = mesh.n_nodes();
-    let w: Vec<f64> = (0..n).map(|k| 1.0 + 0.9 * noise(k as u64)).collect();
     // Block and wall pressed down by 1 mm (with ±0.1 mm of noise), the floor by the noise.
-    let u_pred: Vec<[f64; 3]> = (0..n)
-        .map(|k| {
-            let mut u = [0, 1, 2].map(|d| 1e-4 * noise(1000 + 3 * k as u64 + d));
-            if mesh.coords[k][2] > 1.0 - 1e-9
-                && !sys.interfaces[0].slaves.iter().any(|s| s.node == k as u32)
-            {
-                u[2] -= 1e-3;
-            }
-            u
-        })
-        .collect();
-    let v_pred: Vec<[f64; 3]> = u_pred.iter().map(|u| geom::scale(1.0 / DT, *u)).collect();
-    let zero = vec![[0.0; 3]; n];
-    let mut r = vec![[0.0; 3]; n];
-    let inp = ContactStepInput {
-        step: 1,
-        time: 0.0,
-        dt: DT,
-        inv_mass: &w,
-        coords: &mesh.coords,
-        u_old: &zero,
-        u_pred: &u_pred,
-        v_pred: &v_pred,
-    };
-    sys.compute(&inp, &mut r).unwrap();
+    let floor = &sys.interfaces[0].slaves;
+    let m = corner_motion(mesh, |k| {
+        mesh.coords[k][2] > 1.0 - 1e-9 && !floor.iter().any(|s| s.node == k as u32)
+    });
+    let r = motion_step(mesh, &mut sys, &m);
+    let (w, u_pred) = (&m.0, &m.1);
     assert_eq!(sys.unsettled_joint_steps().0, 0, "the group settled");
     let stats = sys.joint_stats();
     assert_eq!(stats.group_steps, 1);
@@ -801,7 +819,10 @@ fn junction_with_a_point_to_surface_node_settles_in_few_sweeps() {
     for i in 0..3 {
         for (a, b, _, _) in sys.pairs(i).into_iter().filter(|p| p.1 != NONE) {
             let d = norm(sub(u(b), u(a)));
-            assert!(d <= 1e-12, "interface {i}: pair {a}–{b} apart by {d:e} m");
+            assert!(
+                d <= 1e-12,
+                "direct {direct}: interface {i}: pair {a}–{b} apart by {d:e} m"
+            );
         }
     }
     // The point-to-surface node: in contact with the block's bottom, its gap closed, its
@@ -813,7 +834,7 @@ fn junction_with_a_point_to_surface_node_settles_in_few_sweeps() {
     let x = |k: u32| geom::add(mesh.coords[k as usize], u(k));
     let c = (0..4).fold([0.0; 3], |acc, j| axpy(acc, phi[j], x(face[j])));
     let gap = sub(c, x(slave))[2];
-    assert!(gap.abs() <= 1e-12, "gap {gap:e} m");
+    assert!(gap.abs() <= 1e-12, "direct {direct}: gap {gap:e} m");
     let lambda = r_normal(s.force);
     assert!(lambda > 0.0, "normal force {lambda}");
     let t = norm([s.force[0], s.force[1], 0.0]);
@@ -826,15 +847,10 @@ fn junction_with_a_point_to_surface_node_settles_in_few_sweeps() {
     let total = r.iter().fold([0.0; 3], |acc, f| geom::add(acc, *f));
     let fmax = r.iter().map(|f| norm(*f)).fold(0.0, f64::max);
     assert!(norm(total) <= 1e-9 * fmax, "sum {:e}", norm(total));
-    // Few sweeps: bonded pairs and a sticking node are linear constraints, and the sweeps
-    // of the junction are alternating projections onto them in the mass metric; each sweep
-    // here removes at least half of what is left, so the tolerance (1e-10) is reached well
-    // within 40 sweeps (the old solve also settled in that many: the count guards against
-    // a walk along the loop).
-    assert!(stats.max_sweeps <= 40, "{} sweeps", stats.max_sweeps);
-    // After the first sweep, only the pairs at the junction or sharing a node with the
-    // point-to-surface system are solved again: the old solve restarted the whole
-    // floor–block interface (all its pairs, at least twice) in every sweep.
+    // After the first sweep (or in the direct system), only the pairs at the junction or
+    // sharing a node with the point-to-surface system are solved again: the old solve
+    // restarted the whole floor–block interface (all its pairs, at least twice) in every
+    // sweep.
     let faces = &sys.interfaces;
     let selected: u64 = faces
         .iter()
@@ -848,6 +864,38 @@ fn junction_with_a_point_to_surface_node_settles_in_few_sweeps() {
         .sum();
     let floor_block = faces[0].slaves.iter().filter(|s| !s.surface).count() as u64;
     assert!(selected < 2 * floor_block, "{selected} of {floor_block}");
+    if direct {
+        // One system of the selected pairs and the point-to-surface node, solved at once:
+        // the active set needs no switch (all stick), the polish confirms it in ≤ 2 sweeps
+        // (the first sweep moves nothing by more than the regularisation, 1e-11).
+        assert_eq!((stats.direct, stats.fallbacks, stats.sweeps), (1, 0, 0));
+        // The system: the junction pairs of every interface, and the floor–block pairs that
+        // share a node with the point-to-surface node's face (the other two interfaces
+        // have no point-to-surface node), plus that node.
+        let in_system = |i: usize, k: usize, s: &SlaveNode| {
+            !s.surface && (s.junction || (i == 0 && faces[0].faces.coupled(sys.stamp, k)))
+        };
+        let (mut system, mut pairs) = (0u64, 0u64);
+        for (i, iface) in faces.iter().enumerate() {
+            for (k, s) in iface.slaves.iter().enumerate() {
+                pairs += u64::from(!s.surface);
+                system += u64::from(in_system(i, k, s));
+            }
+        }
+        assert!(system < selected, "{system} of {selected}");
+        assert_eq!(stats.max_system, system + 1, "{stats:?}");
+        assert_eq!(stats.max_active_set_solves, 1, "{stats:?}");
+        assert!(stats.max_polish_sweeps <= 2, "{stats:?}");
+        // Every other pair is solved once, on its own.
+        assert_eq!(stats.pair_solves, pairs - system, "{stats:?}");
+        return;
+    }
+    // Few sweeps: bonded pairs and a sticking node are linear constraints, and the sweeps
+    // of the junction are alternating projections onto them in the mass metric; each sweep
+    // here removes at least half of what is left, so the tolerance (1e-10) is reached well
+    // within 40 sweeps (the old solve also settled in that many: the count guards against
+    // a walk along the loop).
+    assert!(stats.max_sweeps <= 40, "{} sweeps", stats.max_sweeps);
     assert!(
         stats.late_pair_solves <= (stats.sweeps - 1) * selected,
         "{} pair solves in {} sweeps after the first ({selected} selected)",

@@ -6,6 +6,7 @@ use std::path::Path;
 
 mod common;
 
+use common::{fresh_dir, options, rock, run_text, Histories};
 use dcfm::case::parse_case;
 use dcfm_app::run::{run_case, RunOptions};
 
@@ -32,45 +33,18 @@ name = "coarse"
 origin = [2.0, 0.0, 0.0]
 size = [8.0, 2.0, 2.0]
 divisions = [4, 1, 1]
-[materials.rock]
-model = "elastic"
-young = 20e9
-poisson = 0.25
-density = 2700.0
-[[regions]]
-name = "fine"
-material = "rock"
-[[regions]]
-name = "coarse"
-material = "rock"
-[[boundary.fixed]]
-set = "fine.xmin"
-dofs = "xyz"
-[loads.gravity]
+{rock}[loads.gravity]
 acceleration = [9.81, 0.0, -9.81]
-"#
+"#,
+        rock = rock(&["fine", "coarse"], "fine.xmin"),
     )
-}
-
-fn opts(out: &Path, resume: bool) -> RunOptions {
-    RunOptions {
-        out: out.to_path_buf(),
-        resume,
-        progress: false,
-        ..Default::default()
-    }
 }
 
 #[test]
 fn subcycled_run_reports_levels_and_resumes_bit_identically() {
-    let dir = std::env::temp_dir().join(format!("dcfm-subcycling-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
+    let dir = fresh_dir("subcycling", "resume");
     let case = graded_bar("{ max_level = 3 }", 8, "0.02");
-    let full = run_case(
-        parse_case(&case, "g.toml", Path::new(".")).unwrap(),
-        &opts(&dir.join("full"), false),
-    )
-    .unwrap();
+    let full = run_text("g.toml", &case, &options(&dir.join("full"))).unwrap();
     let s = full.subcycling.clone().expect("subcycling in the summary");
     assert_eq!(s.max_level, 3);
     // The cubes (own step between 2 and 4 × the slabs') step at 2 Δt, except the one
@@ -84,16 +58,12 @@ fn subcycled_run_reports_levels_and_resumes_bit_identically() {
     );
     // Interrupted at a shorter end, resumed to the full end.
     let short = case.replace("end = 0.02", "end = 0.011");
-    run_case(
-        parse_case(&short, "g.toml", Path::new(".")).unwrap(),
-        &opts(&dir.join("part"), false),
-    )
-    .unwrap();
-    let resumed = run_case(
-        parse_case(&case, "g.toml", Path::new(".")).unwrap(),
-        &opts(&dir.join("part"), true),
-    )
-    .unwrap();
+    run_text("g.toml", &short, &options(&dir.join("part"))).unwrap();
+    let resume = RunOptions {
+        resume: true,
+        ..options(&dir.join("part"))
+    };
+    let resumed = run_text("g.toml", &case, &resume).unwrap();
     assert!(resumed
         .resumed_from_step
         .is_some_and(|s| s > 0 && s % 8 == 0));
@@ -103,9 +73,10 @@ fn subcycled_run_reports_levels_and_resumes_bit_identically() {
     assert_eq!(a, b, "histories differ after resuming a subcycled run");
     // The same case without subcycling differs (the option does something) but agrees
     // closely in its end energies.
-    let off = run_case(
-        parse_case(&graded_bar("\"off\"", 8, "0.02"), "g.toml", Path::new(".")).unwrap(),
-        &opts(&dir.join("off"), false),
+    let off = run_text(
+        "g.toml",
+        &graded_bar("\"off\"", 8, "0.02"),
+        &options(&dir.join("off")),
     )
     .unwrap();
     assert!(off.subcycling.is_none());
@@ -133,19 +104,19 @@ fn bad_subcycling_settings_are_refused_by_name() {
         );
     }
     // Checkpoints between synchronous steps (the cycle is 2 steps).
-    let dir = std::env::temp_dir().join(format!("dcfm-subcycling-bad-{}", std::process::id()));
+    let dir = fresh_dir("subcycling", "bad");
     let case = parse_case(
         &graded_bar("{ max_level = 3 }", 5, "0.01"),
         "g.toml",
         Path::new("."),
     )
     .unwrap();
-    let err = run_case(case, &opts(&dir, false)).unwrap_err().to_string();
+    let err = run_case(case, &options(&dir)).unwrap_err().to_string();
     assert!(err.contains("output.checkpoint_every"), "{err}");
     // Stiffness-proportional damping: refused, not run wrong.
     let damped = graded_bar("{ max_level = 3 }", 8, "0.01") + "[damping]\nbeta = 1e-5\n";
     let case = parse_case(&damped, "g.toml", Path::new(".")).unwrap();
-    let err = run_case(case, &opts(&dir, false)).unwrap_err().to_string();
+    let err = run_case(case, &options(&dir)).unwrap_err().to_string();
     assert!(
         err.contains("time.subcycling") && err.contains("β"),
         "{err}"
@@ -159,8 +130,7 @@ fn bad_subcycling_settings_are_refused_by_name() {
 /// would step at 2 Δt), and the subcycled run follows the single-step one.
 #[test]
 fn contact_nodes_stay_on_the_finest_step() {
-    let dir = std::env::temp_dir().join(format!("dcfm-subcycling-contact-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
+    let dir = fresh_dir("subcycling", "contact");
     let case = |setting: &str| {
         graded_bar(setting, 8, "0.02")
             .replace("[mesh]\n", "[mesh]\nsplit = [[\"fine\", \"coarse\"]]\n")
@@ -172,11 +142,7 @@ fn contact_nodes_stay_on_the_finest_step() {
                surface_b = \"fine-coarse\"\nmu_s = 0.5\nmu_d = 0.4\ncohesion = 0.0\n"
     };
     let run = |setting: &str, name: &str| {
-        run_case(
-            parse_case(&case(setting), "c.toml", Path::new(".")).unwrap(),
-            &opts(&dir.join(name), false),
-        )
-        .unwrap()
+        run_text("c.toml", &case(setting), &options(&dir.join(name))).unwrap()
     };
     let on = run("{ max_level = 3 }", "on");
     let off = run("\"off\"", "off");
@@ -193,31 +159,12 @@ fn contact_nodes_stay_on_the_finest_step() {
     // takes no shortened last step), every history column within 5 % of its range in the
     // single-step run for the displacements — the energies (columns 1–8: kinetic … residual) within 5 % of the
     // largest energy, the external work (the friction work at the cut is 1e-4 of it).
-    let read = |name: &str| -> Vec<Vec<f64>> {
-        std::fs::read_to_string(dir.join(name).join("histories.csv"))
-            .unwrap()
-            .lines()
-            .skip(1)
-            .map(|l| {
-                l.split(',')
-                    .map(|x| x.trim().parse().unwrap_or(f64::NAN))
-                    .collect()
-            })
-            .collect()
-    };
-    let (a, b) = (read("on"), read("off"));
+    let a = Histories::read(&dir.join("on")).rows;
+    let Histories { header, rows: b } = Histories::read(&dir.join("off"));
     // Velocities and accelerations of a coarse node are those of its own (longer) step,
     // at another time: compared are the energies and the displacements along the bar
     // (the lateral ones, Poisson's, are 1/20 of these and differ by up to 6 % of their
     // range).
-    let header: Vec<String> = std::fs::read_to_string(dir.join("off/histories.csv"))
-        .unwrap()
-        .lines()
-        .next()
-        .unwrap()
-        .split(',')
-        .map(|h| h.trim().to_string())
-        .collect();
     let rows = a.len().min(b.len()) - 1;
     assert!(rows > 100);
     for col in 0..b[0].len() {
@@ -252,8 +199,7 @@ fn contact_nodes_stay_on_the_finest_step() {
 /// update at every step; the subcycled run follows the single-step one.
 #[test]
 fn anchor_hosts_stay_on_the_finest_step() {
-    let dir = std::env::temp_dir().join(format!("dcfm-subcycling-anchor-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
+    let dir = fresh_dir("subcycling", "anchor");
     let case = |setting: &str| {
         graded_bar(setting, 8, "0.02")
             + "[[anchors.bars]]\nname = \"bolt\"\nstart = [8.5, 1.0, 1.0]\n\
@@ -263,11 +209,7 @@ fn anchor_hosts_stay_on_the_finest_step() {
                bond_stiffness = 1e9\nsegment_length = 0.25\n"
     };
     let run = |setting: &str, name: &str| {
-        run_case(
-            parse_case(&case(setting), "a.toml", Path::new(".")).unwrap(),
-            &opts(&dir.join(name), false),
-        )
-        .unwrap()
+        run_text("a.toml", &case(setting), &options(&dir.join(name))).unwrap()
     };
     let on = run("{ max_level = 3 }", "on");
     let off = run("\"off\"", "off");
@@ -284,25 +226,8 @@ fn anchor_hosts_stay_on_the_finest_step() {
     // the host cube every step; the other slabs and the cube at x 2–4 m every 2 steps; the
     // cube at x 4–6 m every 8.
     assert_eq!(s.elements_per_level, vec![3, 4, 0, 1], "{s:?}");
-    let read = |name: &str| -> (Vec<String>, Vec<Vec<f64>>) {
-        let text = std::fs::read_to_string(dir.join(name).join("histories.csv")).unwrap();
-        let mut lines = text.lines();
-        let header = lines
-            .next()
-            .unwrap()
-            .split(',')
-            .map(|h| h.trim().to_string())
-            .collect();
-        let rows = lines
-            .map(|l| {
-                l.split(',')
-                    .map(|x| x.trim().parse().unwrap_or(f64::NAN))
-                    .collect()
-            })
-            .collect();
-        (header, rows)
-    };
-    let ((header, a), (_, b)) = (read("on"), read("off"));
+    let on_histories = Histories::read(&dir.join("on"));
+    let (a, b) = (&on_histories.rows, Histories::read(&dir.join("off")).rows);
     let rows = a.len().min(b.len()) - 1;
     assert!(rows > 100);
     // Row by row (the same full steps), each column's largest difference from the
@@ -318,14 +243,9 @@ fn anchor_hosts_stay_on_the_finest_step() {
             / scale
     };
     let range = |col: usize| b.iter().map(|r| r[col].abs()).fold(0.0, f64::max);
-    let column = |name: &str| {
-        header
-            .iter()
-            .position(|h| h == name)
-            .unwrap_or_else(|| panic!("no column {name} in {header:?}"))
-    };
+    let column = |name: &str| on_histories.index(name);
     let largest_energy = (1..=8).map(range).fold(0.0, f64::max);
-    for (col, name) in header.iter().enumerate().take(9).skip(1) {
+    for (col, name) in on_histories.header.iter().enumerate().take(9).skip(1) {
         let w = worst(col, largest_energy);
         assert!(w <= 0.02, "{name}: {w:.4} of the largest energy");
     }

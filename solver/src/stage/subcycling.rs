@@ -137,7 +137,10 @@ pub(crate) fn plan(
         return Err(refuse("stiffness-proportional damping β", max_level));
     }
     let n = model.mesh.n_nodes();
-    let mut node_level = vec![max_level; n];
+    // `NO_ELEMENT` until an element's level lowers it: one walk over the connectivity
+    // gives both the node levels and the nodes without an element.
+    const NO_ELEMENT: u8 = u8::MAX;
+    let mut node_level = vec![NO_ELEMENT; n];
     let mut group_levels: Vec<Vec<u8>> = Vec::with_capacity(model.groups.len());
     for g in &model.groups {
         let mut lv = Vec::with_capacity(g.len());
@@ -161,16 +164,8 @@ pub(crate) fn plan(
         group_levels.push(lv);
     }
     // Nodes without an element stay on the finest step.
-    let mut has_element = vec![false; n];
-    for g in &model.groups {
-        for c in &g.conn {
-            for &i in c {
-                has_element[i as usize] = true;
-            }
-        }
-    }
     for (i, l) in node_level.iter_mut().enumerate() {
-        if !has_element[i] || model.constraints.constrained[i] != 0 {
+        if *l == NO_ELEMENT || model.constraints.constrained[i] != 0 {
             *l = 0;
         }
     }

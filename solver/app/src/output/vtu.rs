@@ -40,6 +40,24 @@ enum IndexType {
     Int64,
 }
 
+impl IndexType {
+    /// The VTK type name.
+    fn name(self) -> &'static str {
+        match self {
+            IndexType::Int32 => "Int32",
+            IndexType::Int64 => "Int64",
+        }
+    }
+
+    /// Bytes per index.
+    fn bytes(self) -> u64 {
+        match self {
+            IndexType::Int32 => 4,
+            IndexType::Int64 => 8,
+        }
+    }
+}
+
 /// Write a `.vtu` file of hex8 `cells` (VTK/Gmsh node order) over `coords`, with
 /// `point_fields` (one tuple per point), `cell_fields` (one tuple per cell) and the
 /// string arrays `field_data` of the whole data set (`output::field_data`), atomically.
@@ -151,6 +169,34 @@ fn check(
     Ok(())
 }
 
+/// Refuse a field without components or without `components` values for each of the
+/// `n_points` points (`point_fields`) or `n_cells` cells (`cell_fields`), naming `path`
+/// and the field ([`write_vtu_lines`], `super::vtu_compressed`).
+pub(crate) fn check_field_sizes(
+    path: &Path,
+    point_fields: &[VtuField],
+    n_points: usize,
+    cell_fields: &[VtuField],
+    n_cells: usize,
+) -> Result<()> {
+    for (kind, fields, n) in [
+        ("point field", point_fields, n_points),
+        ("cell field", cell_fields, n_cells),
+    ] {
+        for f in fields {
+            if f.components == 0 || f.values.len() != f.components * n {
+                return Err(DcfmError::invalid(
+                    label(path),
+                    format!("{kind} '{}'", f.name),
+                    format!("{} values, {} components", f.values.len(), f.components),
+                    format!("components >= 1 and components x {n} values"),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
 /// Escape a string for an XML attribute value.
 pub(crate) fn xml_escape(s: &str) -> String {
     let mut out = String::with_capacity(s.len());
@@ -167,9 +213,139 @@ pub(crate) fn xml_escape(s: &str) -> String {
     out
 }
 
-/// The arrays in the order they are appended, with their byte sizes (without the header).
-struct ArrayLayout {
-    offset: u64,
+/// How a `.vtu`'s arrays are appended after its XML head.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Appended {
+    /// Base64 text ([`write_vtu`], [`write_vtu_lines`]).
+    Base64,
+    /// Raw bytes, every array zlib-compressed (`super::vtu_compressed`).
+    RawZlib,
+}
+
+/// One DataArray of a `.vtu`'s XML head: the attributes that say what it holds (`type`,
+/// `Name`, `NumberOfComponents`) and its offset in the appended data.
+pub(crate) type ArrayTag = (String, u64);
+
+/// The attributes of field `f` stored as `value_type` (`Float64`, `Float32`).
+pub(crate) fn field_attrs(f: &VtuField, value_type: &str) -> String {
+    format!(
+        "type=\"{value_type}\" Name=\"{}\" NumberOfComponents=\"{}\"",
+        xml_escape(f.name),
+        f.components
+    )
+}
+
+/// The attributes of the points' DataArray (Float64 coordinates).
+pub(crate) const POINTS_ATTRS: &str = "type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\"";
+
+/// The attributes of the cells' connectivity, offsets and types DataArrays, the indices
+/// stored as `index_type` (`Int32`, `Int64`).
+pub(crate) fn cells_attrs(index_type: &str) -> [String; 3] {
+    [
+        format!("type=\"{index_type}\" Name=\"connectivity\""),
+        format!("type=\"{index_type}\" Name=\"offsets\""),
+        "type=\"UInt8\" Name=\"types\"".to_string(),
+    ]
+}
+
+/// The XML of a one-piece UnstructuredGrid up to the `_` that opens its appended data, as
+/// VTK's `vtkXMLWriter` writes it in appended mode: the `VTKFile` element (naming VTK's
+/// zlib compressor for [`Appended::RawZlib`]), the data set's `field_data`, a piece of
+/// `n_points` points and `n_cells` cells, and a DataArray for each of `arrays` — the
+/// `n_point_fields` point fields, then the cell fields, the points, and the cells'
+/// connectivity, offsets and types (always the last four).
+pub(crate) fn write_head<W: Write>(
+    w: &mut W,
+    appended: Appended,
+    field_data: &[VtuStrings],
+    n_points: usize,
+    n_cells: usize,
+    n_point_fields: usize,
+    arrays: &[ArrayTag],
+) -> io::Result<()> {
+    let (compressor, encoding) = match appended {
+        Appended::Base64 => ("", "base64"),
+        Appended::RawZlib => (" compressor=\"vtkZLibDataCompressor\"", "raw"),
+    };
+    writeln!(w, "<?xml version=\"1.0\"?>")?;
+    writeln!(
+        w,
+        "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\"{compressor}>"
+    )?;
+    writeln!(w, "  <UnstructuredGrid>")?;
+    write_field_data(w, field_data, 4)?;
+    writeln!(
+        w,
+        "    <Piece NumberOfPoints=\"{n_points}\" NumberOfCells=\"{n_cells}\">"
+    )?;
+    let (point_fields, rest) = arrays.split_at(n_point_fields);
+    let (cell_fields, rest) = rest.split_at(rest.len() - 4);
+    let (points, cells) = rest.split_at(1);
+    for (section, tags) in [
+        ("PointData", point_fields),
+        ("CellData", cell_fields),
+        ("Points", points),
+        ("Cells", cells),
+    ] {
+        writeln!(w, "      <{section}>")?;
+        for (attrs, offset) in tags {
+            writeln!(
+                w,
+                "        <DataArray {attrs} format=\"appended\" offset=\"{offset}\"/>"
+            )?;
+        }
+        writeln!(w, "      </{section}>")?;
+    }
+    writeln!(w, "    </Piece>")?;
+    writeln!(w, "  </UnstructuredGrid>")?;
+    write!(w, "  <AppendedData encoding=\"{encoding}\">\n   _")
+}
+
+/// What closes a `.vtu` after its appended data.
+pub(crate) fn write_tail(w: &mut impl Write) -> io::Result<()> {
+    write!(w, "\n  </AppendedData>\n</VTKFile>\n")
+}
+
+/// The DataArrays of a base64 appended block, each at its offset in base64 characters
+/// (every array is an 8-byte length header + data, encoded and padded on its own), and
+/// the length of the block so far.
+struct Base64Tags {
+    tags: Vec<ArrayTag>,
+    end: u64,
+}
+
+impl Base64Tags {
+    /// The arrays [`put_fields_and_points`] appends: the point fields, the cell fields
+    /// (Float64) and the points.
+    fn fields_and_points(
+        point_fields: &[VtuField],
+        cell_fields: &[VtuField],
+        n_points: usize,
+    ) -> Self {
+        let mut t = Self {
+            tags: Vec::with_capacity(point_fields.len() + cell_fields.len() + 4),
+            end: 0,
+        };
+        for f in point_fields.iter().chain(cell_fields) {
+            t.push(field_attrs(f, "Float64"), 8 * f.values.len() as u64);
+        }
+        t.push(POINTS_ATTRS.to_string(), 24 * n_points as u64);
+        t
+    }
+
+    /// Append an array of `attrs` holding `bytes` bytes.
+    fn push(&mut self, attrs: String, bytes: u64) {
+        self.tags.push((attrs, self.end));
+        self.end += 4 * (8 + bytes).div_ceil(3);
+    }
+
+    /// Append the arrays [`put_cells`] appends for `n_cells` cells of `per_cell` nodes.
+    fn cells(&mut self, n_cells: u64, per_cell: u64, index: IndexType) {
+        let [conn, offsets, types] = cells_attrs(index.name());
+        self.push(conn, per_cell * n_cells * index.bytes());
+        self.push(offsets, n_cells * index.bytes());
+        self.push(types, n_cells);
+    }
 }
 
 fn write_body<W: Write>(
@@ -181,123 +357,23 @@ fn write_body<W: Write>(
     field_data: &[VtuStrings],
     index: IndexType,
 ) -> io::Result<()> {
-    let isize = match index {
-        IndexType::Int32 => 4u64,
-        IndexType::Int64 => 8u64,
-    };
-    let itype = match index {
-        IndexType::Int32 => "Int32",
-        IndexType::Int64 => "Int64",
-    };
-    let n_cells = cells.len() as u64;
-    // Offsets into the appended block, in base64 characters: every array is an 8-byte
-    // length header + data, encoded (and padded) on its own.
-    let mut next = 0u64;
-    let mut take = |bytes: u64| {
-        let a = ArrayLayout { offset: next };
-        next += 4 * (8 + bytes).div_ceil(3);
-        a
-    };
-    let pf: Vec<ArrayLayout> = point_fields
-        .iter()
-        .map(|f| take(8 * f.values.len() as u64))
-        .collect();
-    let cf: Vec<ArrayLayout> = cell_fields
-        .iter()
-        .map(|f| take(8 * f.values.len() as u64))
-        .collect();
-    let points = take(24 * coords.len() as u64);
-    let conn = take(8 * n_cells * isize);
-    let offs = take(n_cells * isize);
-    let types = take(n_cells);
-
-    writeln!(w, "<?xml version=\"1.0\"?>")?;
-    writeln!(
+    let mut layout = Base64Tags::fields_and_points(point_fields, cell_fields, coords.len());
+    layout.cells(cells.len() as u64, 8, index);
+    write_head(
         w,
-        "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">"
-    )?;
-    writeln!(w, "  <UnstructuredGrid>")?;
-    write_field_data(w, field_data, 4)?;
-    writeln!(
-        w,
-        "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">",
+        Appended::Base64,
+        field_data,
         coords.len(),
-        cells.len()
+        cells.len(),
+        point_fields.len(),
+        &layout.tags,
     )?;
-    let data_array = |w: &mut W, f: &VtuField, a: &ArrayLayout| {
-        writeln!(
-            w,
-            "        <DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"appended\" offset=\"{}\"/>",
-            xml_escape(f.name),
-            f.components,
-            a.offset
-        )
-    };
-    writeln!(w, "      <PointData>")?;
-    for (f, a) in point_fields.iter().zip(&pf) {
-        data_array(w, f, a)?;
-    }
-    writeln!(w, "      </PointData>")?;
-    writeln!(w, "      <CellData>")?;
-    for (f, a) in cell_fields.iter().zip(&cf) {
-        data_array(w, f, a)?;
-    }
-    writeln!(w, "      </CellData>")?;
-    writeln!(w, "      <Points>")?;
-    writeln!(
-        w,
-        "        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" format=\"appended\" offset=\"{}\"/>",
-        points.offset
-    )?;
-    writeln!(w, "      </Points>")?;
-    writeln!(w, "      <Cells>")?;
-    writeln!(
-        w,
-        "        <DataArray type=\"{itype}\" Name=\"connectivity\" format=\"appended\" offset=\"{}\"/>",
-        conn.offset
-    )?;
-    writeln!(
-        w,
-        "        <DataArray type=\"{itype}\" Name=\"offsets\" format=\"appended\" offset=\"{}\"/>",
-        offs.offset
-    )?;
-    writeln!(
-        w,
-        "        <DataArray type=\"UInt8\" Name=\"types\" format=\"appended\" offset=\"{}\"/>",
-        types.offset
-    )?;
-    writeln!(w, "      </Cells>")?;
-    writeln!(w, "    </Piece>")?;
-    writeln!(w, "  </UnstructuredGrid>")?;
-    write!(w, "  <AppendedData encoding=\"base64\">\n   _")?;
-
     let mut b = Base64Writer::new(w);
     put_fields_and_points(&mut b, point_fields, cell_fields, coords)?;
-    let index_bytes = |b: &mut Base64Writer<W>, v: u64| match index {
-        IndexType::Int32 => b.put(&(v as i32).to_le_bytes()),
-        IndexType::Int64 => b.put(&(v as i64).to_le_bytes()),
-    };
-    b.put(&(8 * n_cells * isize).to_le_bytes())?;
-    for c in cells {
-        for &a in c {
-            index_bytes(&mut b, a as u64)?;
-        }
-    }
-    b.end_array()?;
-    b.put(&(n_cells * isize).to_le_bytes())?;
-    for i in 1..=n_cells {
-        index_bytes(&mut b, 8 * i)?;
-    }
-    b.end_array()?;
-    b.put(&n_cells.to_le_bytes())?;
-    for _ in 0..n_cells {
-        b.put(&[VTK_HEXAHEDRON])?;
-    }
-    b.end_array()?;
-    debug_assert_eq!(b.written, next);
+    put_cells(&mut b, cells.as_flattened(), 8, VTK_HEXAHEDRON, index)?;
+    debug_assert_eq!(b.written, layout.end);
     b.flush()?;
-    write!(w, "\n  </AppendedData>\n</VTKFile>\n")?;
-    Ok(())
+    write_tail(w)
 }
 
 const B64: &[u8; 64] = b"ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
@@ -322,6 +398,38 @@ fn put_fields_and_points<W: Write>(
         for v in p {
             b.put(&v.to_le_bytes())?;
         }
+    }
+    b.end_array()
+}
+
+/// The cells' arrays every writer ends with: the connectivity `conn` (`per_cell` node
+/// indices a cell), the offsets and the types (all `cell_type`), each array its byte count
+/// then its values, the indices as `index`.
+fn put_cells<W: Write>(
+    b: &mut Base64Writer<'_, W>,
+    conn: &[u32],
+    per_cell: u64,
+    cell_type: u8,
+    index: IndexType,
+) -> io::Result<()> {
+    let put_index = |b: &mut Base64Writer<'_, W>, v: u64| match index {
+        IndexType::Int32 => b.put(&(v as i32).to_le_bytes()),
+        IndexType::Int64 => b.put(&(v as i64).to_le_bytes()),
+    };
+    let n_cells = conn.len() as u64 / per_cell;
+    b.put(&(conn.len() as u64 * index.bytes()).to_le_bytes())?;
+    for &a in conn {
+        put_index(b, a as u64)?;
+    }
+    b.end_array()?;
+    b.put(&(n_cells * index.bytes()).to_le_bytes())?;
+    for i in 1..=n_cells {
+        put_index(b, per_cell * i)?;
+    }
+    b.end_array()?;
+    b.put(&n_cells.to_le_bytes())?;
+    for _ in 0..n_cells {
+        b.put(&[cell_type])?;
     }
     b.end_array()
 }
@@ -647,21 +755,7 @@ pub fn write_vtu_lines(
     point_fields: &[VtuField],
     cell_fields: &[VtuField],
 ) -> Result<()> {
-    for (kind, fields, n) in [
-        ("point field", point_fields, points.len()),
-        ("cell field", cell_fields, lines.len()),
-    ] {
-        for f in fields {
-            if f.components == 0 || f.values.len() != f.components * n {
-                return Err(DcfmError::invalid(
-                    label(path),
-                    format!("{kind} '{}'", f.name),
-                    format!("{} values, {} components", f.values.len(), f.components),
-                    format!("components >= 1 and components x {n} values"),
-                ));
-            }
-        }
-    }
+    check_field_sizes(path, point_fields, points.len(), cell_fields, lines.len())?;
     if let Some((c, l)) = lines
         .iter()
         .enumerate()
@@ -675,74 +769,23 @@ pub fn write_vtu_lines(
         ));
     }
     write_atomic_with(path, |w| {
-        let n = lines.len() as u64;
-        let mut next = 0u64;
-        let mut take = |bytes: u64| {
-            let o = next;
-            next += 4 * (8 + bytes).div_ceil(3);
-            o
-        };
-        let pf: Vec<u64> = point_fields
-            .iter()
-            .map(|f| take(8 * f.values.len() as u64))
-            .collect();
-        let cf: Vec<u64> = cell_fields
-            .iter()
-            .map(|f| take(8 * f.values.len() as u64))
-            .collect();
-        let pts = take(24 * points.len() as u64);
-        let conn = take(16 * n);
-        let offs = take(8 * n);
-        let types = take(n);
-        writeln!(w, "<?xml version=\"1.0\"?>")?;
-        writeln!(w, "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\">")?;
-        writeln!(w, "  <UnstructuredGrid>")?;
-        writeln!(
+        let mut layout = Base64Tags::fields_and_points(point_fields, cell_fields, points.len());
+        layout.cells(lines.len() as u64, 2, IndexType::Int64);
+        write_head(
             w,
-            "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">",
+            Appended::Base64,
+            &[],
             points.len(),
-            n
+            lines.len(),
+            point_fields.len(),
+            &layout.tags,
         )?;
-        for (tag, fields, offsets) in [
-            ("PointData", point_fields, &pf),
-            ("CellData", cell_fields, &cf),
-        ] {
-            writeln!(w, "      <{tag}>")?;
-            for (f, o) in fields.iter().zip(offsets.iter()) {
-                writeln!(w, "        <DataArray type=\"Float64\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"appended\" offset=\"{o}\"/>", xml_escape(f.name), f.components)?;
-            }
-            writeln!(w, "      </{tag}>")?;
-        }
-        writeln!(w, "      <Points>\n        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" format=\"appended\" offset=\"{pts}\"/>\n      </Points>")?;
-        writeln!(w, "      <Cells>")?;
-        writeln!(w, "        <DataArray type=\"Int64\" Name=\"connectivity\" format=\"appended\" offset=\"{conn}\"/>")?;
-        writeln!(w, "        <DataArray type=\"Int64\" Name=\"offsets\" format=\"appended\" offset=\"{offs}\"/>")?;
-        writeln!(w, "        <DataArray type=\"UInt8\" Name=\"types\" format=\"appended\" offset=\"{types}\"/>")?;
-        writeln!(w, "      </Cells>\n    </Piece>\n  </UnstructuredGrid>")?;
-        write!(w, "  <AppendedData encoding=\"base64\">\n   _")?;
         let mut b = Base64Writer::new(w);
         put_fields_and_points(&mut b, point_fields, cell_fields, points)?;
-        b.put(&(16 * n).to_le_bytes())?;
-        for l in lines {
-            for &a in l {
-                b.put(&(a as i64).to_le_bytes())?;
-            }
-        }
-        b.end_array()?;
-        b.put(&(8 * n).to_le_bytes())?;
-        for i in 1..=n {
-            b.put(&(2 * i as i64).to_le_bytes())?;
-        }
-        b.end_array()?;
-        b.put(&n.to_le_bytes())?;
-        for _ in 0..n {
-            b.put(&[VTK_LINE])?;
-        }
-        b.end_array()?;
-        debug_assert_eq!(b.written, next);
+        put_cells(&mut b, lines.as_flattened(), 2, VTK_LINE, IndexType::Int64)?;
+        debug_assert_eq!(b.written, layout.end);
         b.flush()?;
-        write!(w, "\n  </AppendedData>\n</VTKFile>\n")?;
-        Ok(())
+        write_tail(w)
     })
 }
 

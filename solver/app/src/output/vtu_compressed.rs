@@ -21,8 +21,11 @@ use std::path::Path;
 use flate2::write::ZlibEncoder;
 use flate2::Compression;
 
-use super::field_data::{write_field_data, VtuStrings};
-use super::vtu::{xml_escape, VtuField, VTK_HEXAHEDRON};
+use super::field_data::VtuStrings;
+use super::vtu::{
+    cells_attrs, field_attrs, write_head, write_tail, Appended, ArrayTag, VtuField, POINTS_ATTRS,
+    VTK_HEXAHEDRON,
+};
 use super::{atomic::write_atomic_with, label};
 use dcfm::error::{DcfmError, Result};
 
@@ -84,21 +87,7 @@ pub fn write_vtu_compressed(
     field_data: &[VtuStrings],
 ) -> Result<()> {
     super::vtu::check_strings(path, field_data)?;
-    for (kind, fields, n) in [
-        ("point field", point_fields, coords.len()),
-        ("cell field", cell_fields, cells.len()),
-    ] {
-        for f in fields {
-            if f.components == 0 || f.values.len() != f.components * n {
-                return Err(DcfmError::invalid(
-                    label(path),
-                    format!("{kind} '{}'", f.name),
-                    format!("{} values, {} components", f.values.len(), f.components),
-                    format!("components >= 1 and components x {n} values"),
-                ));
-            }
-        }
-    }
+    super::vtu::check_field_sizes(path, point_fields, coords.len(), cell_fields, cells.len())?;
     if let Some((c, bad)) = cells.iter().enumerate().find_map(|(c, conn)| {
         conn.iter()
             .find(|&&a| a as usize >= coords.len())
@@ -138,21 +127,12 @@ fn write_body<W: Write>(
         arrays.push((xml, Compressed::new(&bytes, level)?));
         Ok(())
     };
-    let field_xml = |f: &VtuField| {
-        format!(
-            "type=\"Float32\" Name=\"{}\" NumberOfComponents=\"{}\"",
-            xml_escape(f.name),
-            f.components
-        )
-    };
-    for f in point_fields {
-        add(field_xml(f), f32_bytes(f.values))?;
+    for f in point_fields.iter().chain(cell_fields) {
+        add(field_attrs(f, "Float32"), f32_bytes(f.values))?;
     }
-    for f in cell_fields {
-        add(field_xml(f), f32_bytes(f.values))?;
-    }
+    let [conn, offsets, types] = cells_attrs("Int32");
     add(
-        "type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\"".into(),
+        POINTS_ATTRS.to_string(),
         coords
             .iter()
             .flatten()
@@ -160,7 +140,7 @@ fn write_body<W: Write>(
             .collect(),
     )?;
     add(
-        "type=\"Int32\" Name=\"connectivity\"".into(),
+        conn,
         cells
             .iter()
             .flatten()
@@ -168,68 +148,31 @@ fn write_body<W: Write>(
             .collect(),
     )?;
     add(
-        "type=\"Int32\" Name=\"offsets\"".into(),
+        offsets,
         (1..=cells.len())
             .flat_map(|c| ((8 * c) as i32).to_le_bytes())
             .collect(),
     )?;
-    add(
-        "type=\"UInt8\" Name=\"types\"".into(),
-        vec![VTK_HEXAHEDRON; cells.len()],
-    )?;
-    let mut offsets = Vec::with_capacity(arrays.len());
+    add(types, vec![VTK_HEXAHEDRON; cells.len()])?;
+    let mut tags: Vec<ArrayTag> = Vec::with_capacity(arrays.len());
     let mut next = 0u64;
-    for (_, a) in &arrays {
-        offsets.push(next);
+    for (attrs, a) in &arrays {
+        tags.push((attrs.clone(), next));
         next += a.len();
     }
-    let tag = |k: usize| {
-        format!(
-            "<DataArray {} format=\"appended\" offset=\"{}\"/>",
-            arrays[k].0, offsets[k]
-        )
-    };
-    let (np, nc) = (point_fields.len(), cell_fields.len());
-    writeln!(w, "<?xml version=\"1.0\"?>")?;
-    writeln!(
+    write_head(
         w,
-        "<VTKFile type=\"UnstructuredGrid\" version=\"1.0\" byte_order=\"LittleEndian\" header_type=\"UInt64\" compressor=\"vtkZLibDataCompressor\">"
-    )?;
-    writeln!(w, "  <UnstructuredGrid>")?;
-    write_field_data(w, field_data, 4)?;
-    writeln!(
-        w,
-        "    <Piece NumberOfPoints=\"{}\" NumberOfCells=\"{}\">",
+        Appended::RawZlib,
+        field_data,
         coords.len(),
-        cells.len()
+        cells.len(),
+        point_fields.len(),
+        &tags,
     )?;
-    writeln!(w, "      <PointData>")?;
-    for k in 0..np {
-        writeln!(w, "        {}", tag(k))?;
-    }
-    writeln!(w, "      </PointData>")?;
-    writeln!(w, "      <CellData>")?;
-    for k in np..np + nc {
-        writeln!(w, "        {}", tag(k))?;
-    }
-    writeln!(w, "      </CellData>")?;
-    writeln!(w, "      <Points>")?;
-    writeln!(w, "        {}", tag(np + nc))?;
-    writeln!(w, "      </Points>")?;
-    writeln!(w, "      <Cells>")?;
-    for k in np + nc + 1..np + nc + 4 {
-        writeln!(w, "        {}", tag(k))?;
-    }
-    writeln!(w, "      </Cells>")?;
-    writeln!(w, "    </Piece>")?;
-    writeln!(w, "  </UnstructuredGrid>")?;
-    write!(w, "  <AppendedData encoding=\"raw\">\n   _")?;
     for (_, a) in &arrays {
         a.write(w)?;
     }
-    writeln!(w, "\n  </AppendedData>")?;
-    writeln!(w, "</VTKFile>")?;
-    Ok(())
+    write_tail(w)
 }
 
 /// The cells `selected` (element ids, ascending) of a mesh with their own compact node

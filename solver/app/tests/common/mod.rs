@@ -23,18 +23,28 @@ name = "b"
 origin = [0.0, 0.0, 0.0]
 size = [{size:?}, {size:?}, {size:?}]
 divisions = [2, 2, 2]
-[materials.rock]
+{rock}{extra}"#,
+        rock = rock(&["b"], "b.zmin"),
+    )
+}
+
+/// The rock of these cases (elastic: E 20 GPa, ν 0.25, 2700 kg/m³) as `[materials.rock]`,
+/// a region of it for each of `regions`, and the node set `fixed` held in x, y and z.
+pub fn rock(regions: &[&str], fixed: &str) -> String {
+    let regions: String = regions
+        .iter()
+        .map(|r| format!("[[regions]]\nname = \"{r}\"\nmaterial = \"rock\"\n"))
+        .collect();
+    format!(
+        r#"[materials.rock]
 model = "elastic"
 young = 20e9
 poisson = 0.25
 density = 2700.0
-[[regions]]
-name = "b"
-material = "rock"
-[[boundary.fixed]]
-set = "b.zmin"
+{regions}[[boundary.fixed]]
+set = "{fixed}"
 dofs = "xyz"
-{extra}"#
+"#
     )
 }
 
@@ -68,21 +78,7 @@ name = "block"
 origin = [1.0, 0.0, 1.0]
 size = [1.0, 2.0, 1.0]
 divisions = [1, 2, 1]
-[materials.rock]
-model = "elastic"
-young = 20e9
-poisson = 0.25
-density = 2700.0
-[[regions]]
-name = "base"
-material = "rock"
-[[regions]]
-name = "block"
-material = "rock"
-[[boundary.fixed]]
-set = "base"
-dofs = "xyz"
-[loads.gravity]
+{rock}[loads.gravity]
 acceleration = [0.0, 0.0, -9.81]
 [[loads.nodal]]
 set = "block"
@@ -95,7 +91,8 @@ mu_s = 0.5
 mu_d = 0.4
 cohesion = 1e3
 b_may_extend = true
-"#
+"#,
+        rock = rock(&["base", "block"], "base"),
     )
 }
 

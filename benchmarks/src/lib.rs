@@ -5,6 +5,7 @@
 //! - [`record`]: one JSON record per timed configuration;
 //! - [`history`]: the append-only `benchmarks/history.jsonl` of those records;
 //! - [`static_solve`]: the static stage's sparse direct solve of an n³ cube (issue #7);
+//! - [`scipy_csr`]: the scipy CSR leapfrog on the same cube, run through Python (issue 11);
 //! - [`speedup`] and [`targets`]: what the runner prints at the end (thread speed-ups and
 //!   the throughput targets of issues #2, #3, #4 and #7);
 //! - [`git`], [`timestamp`]: provenance of a record (commit, UTC time);
@@ -21,6 +22,7 @@ pub mod machine;
 pub mod memory;
 pub mod record;
 pub mod runner;
+pub mod scipy_csr;
 pub mod speedup;
 pub mod static_solve;
 pub mod targets;
@@ -28,4 +30,5 @@ pub mod timestamp;
 
 pub use error::BenchError;
 pub use record::ThroughputRecord;
-pub use runner::{run, RunConfig};
+pub use runner::{run, run_with_notes, RunConfig};
+pub use scipy_csr::ScipyBaseline;

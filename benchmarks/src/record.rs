@@ -87,6 +87,11 @@ pub struct ThroughputRecord {
     /// the solve; `steps` is 1 and `wall_s` the whole static stage.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub static_solve: Option<crate::static_solve::StaticSolveTiming>,
+    /// The scipy CSR leapfrog rows (`cube{n}_scipy_csr`, issue 11): the stepped system's
+    /// size, the versions, and dcfm's `cube{n}_full` rate in the same run over this row's
+    /// per thread count. `threads` is 1, `profile` that of the runner.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub scipy_csr: Option<crate::scipy_csr::ScipyCsrInfo>,
 }
 
 impl ThroughputRecord {

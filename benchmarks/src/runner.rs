@@ -11,6 +11,7 @@ use dcfm::stage::Simulation;
 use crate::cube::{CubeMaterial, CubeSpec};
 use crate::error::BenchError;
 use crate::record::ThroughputRecord;
+use crate::scipy_csr::{self, ScipyBaseline, ScipyCsrInfo, ScriptRun};
 use crate::{cputime, git, history, memory, timestamp};
 
 /// What to run and how long.
@@ -55,6 +56,10 @@ pub struct RunConfig {
     pub history: Option<PathBuf>,
     /// Recorded as the record's `mode`.
     pub mode: String,
+    /// The scipy CSR leapfrog of `benchmarks/python/csr_leapfrog.py` on the same cube,
+    /// timed right after every elastic `cube{n}_full` case (row `cube{n}_scipy_csr`, one
+    /// thread) with that case's Δt, warm-up and minimum wall time (issue 11).
+    pub scipy: ScipyBaseline,
 }
 
 impl RunConfig {
@@ -81,6 +86,7 @@ impl RunConfig {
             filter: None,
             history: Some(history::default_history_path()),
             mode: "standard".to_string(),
+            scipy: ScipyBaseline::Auto,
         }
     }
 
@@ -233,10 +239,21 @@ pub fn time_steps(
 
 /// Run every case of `config` on every thread count, calling `on_record` as each record is
 /// made (after it has been appended to the history file, when recording). Returns all of
-/// them in run order. An empty case list (filter matching nothing) is an error.
+/// them in run order. An empty case list (filter matching nothing) is an error. Why a
+/// scipy row was skipped goes to stderr (see [`run_with_notes`]).
 pub fn run(
     config: &RunConfig,
+    on_record: impl FnMut(&ThroughputRecord),
+) -> Result<Vec<ThroughputRecord>, BenchError> {
+    run_with_notes(config, on_record, |note| eprintln!("{note}"))
+}
+
+/// [`run`], with the lines that say why a scipy CSR row was skipped passed to `on_note`
+/// (no Python, a failing script, output that is not its record, a different cube).
+pub fn run_with_notes(
+    config: &RunConfig,
     mut on_record: impl FnMut(&ThroughputRecord),
+    mut on_note: impl FnMut(&str),
 ) -> Result<Vec<ThroughputRecord>, BenchError> {
     config.validate()?;
     let cases = config.cases();
@@ -246,7 +263,27 @@ pub fn run(
             config.filter.as_deref().unwrap_or("")
         )));
     }
-    let commit = git::commit_label(&history::workspace_root());
+    let root = history::workspace_root();
+    let commit = git::commit_label(&root);
+    let wants_scipy = |spec: &CubeSpec| {
+        spec.integration == Integration::Full
+            && spec.material == CubeMaterial::Elastic
+            && !spec.boundaries
+            && !spec.interface
+    };
+    let python = match scipy_csr::find_python(
+        &config.scipy,
+        std::env::var_os(scipy_csr::PYTHON_ENV),
+        &root,
+    ) {
+        Ok(p) => Some(p),
+        Err(why) => {
+            if config.scipy != ScipyBaseline::Off && cases.iter().any(wants_scipy) {
+                on_note(&format!("scipy CSR rows skipped: {why}; no ratio recorded"));
+            }
+            None
+        }
+    };
     let cpus = std::thread::available_parallelism().map_or(1, |n| n.get());
     let machine_cpus = crate::machine::machine_cpus().filter(|&n| n > cpus);
     let cpu_model = crate::machine::cpu_model();
@@ -316,12 +353,90 @@ pub fn run(
                 peak_rss_bytes: memory::peak_rss_bytes(),
                 peak_rss_reset: Some(reset),
                 static_solve: None,
+                scipy_csr: None,
             };
             if let Some(path) = &config.history {
                 history::append(path, &record)?;
             }
             on_record(&record);
             records.push(record);
+        }
+        if let Some(python) = python.as_deref().filter(|_| wants_scipy(&spec)) {
+            let dcfm: Vec<&ThroughputRecord> =
+                records.iter().filter(|r| r.case == spec.name()).collect();
+            let run = ScriptRun {
+                divisions: spec.divisions,
+                dt: dcfm.first().map_or(0.0, |r| r.dt_s),
+                warmup,
+                min_wall_s: config.min_wall_s,
+                min_steps: config.min_steps,
+                max_steps: config.max_steps,
+            };
+            let script = scipy_csr::script_path(&root);
+            let name = scipy_csr::case_name(spec.divisions);
+            match scipy_csr::measure(python, &script, &run).and_then(|out| {
+                if out.elements != spec.elements() || out.nodes != nodes {
+                    Err(format!(
+                        "the script's cube has {} elements and {} nodes, dcfm's {} and {}",
+                        out.elements,
+                        out.nodes,
+                        spec.elements(),
+                        nodes
+                    ))
+                } else {
+                    Ok(out)
+                }
+            }) {
+                Err(why) => on_note(&format!("{name} skipped: {why}; no ratio recorded")),
+                Ok(out) => {
+                    let rate = out.element_updates_per_s;
+                    let wall_s = out.seconds;
+                    let record = ThroughputRecord {
+                        case: name,
+                        elements: out.elements,
+                        nodes: out.nodes,
+                        integration: spec.integration.name().to_string(),
+                        threads: 1,
+                        steps: out.steps,
+                        wall_s,
+                        steps_per_s: out.steps as f64 / wall_s,
+                        element_updates_per_s: rate,
+                        bytes_per_element: out.csr_bytes as f64 / out.elements as f64,
+                        dt_s: out.dt_s,
+                        commit: commit.clone(),
+                        timestamp: timestamp::utc_now(),
+                        cpus,
+                        machine_cpus,
+                        cpu_model: cpu_model.clone(),
+                        cpu_share: Some(out.cpu_s / wall_s),
+                        mode: config.mode.clone(),
+                        contact_share: None,
+                        profile: profile.to_string(),
+                        peak_rss_bytes: Some(out.peak_rss_bytes),
+                        peak_rss_reset: Some(true),
+                        static_solve: None,
+                        scipy_csr: Some(ScipyCsrInfo {
+                            dofs: out.dofs,
+                            dofs_total: out.dofs_total,
+                            nnz: out.nnz,
+                            assembly_s: out.assembly_s,
+                            python: out.python,
+                            numpy: out.numpy,
+                            scipy: out.scipy,
+                            skfem: out.skfem,
+                            dcfm_over_scipy: dcfm
+                                .iter()
+                                .map(|r| (r.threads, r.element_updates_per_s / rate))
+                                .collect(),
+                        }),
+                    };
+                    if let Some(path) = &config.history {
+                        history::append(path, &record)?;
+                    }
+                    on_record(&record);
+                    records.push(record);
+                }
+            }
         }
     }
     let threads = config.threads.iter().copied().max().unwrap_or(1);
@@ -359,6 +474,7 @@ pub fn run(
             peak_rss_bytes: memory::peak_rss_bytes(),
             peak_rss_reset: Some(reset),
             static_solve: Some(timing),
+            scipy_csr: None,
         };
         if let Some(path) = &config.history {
             history::append(path, &record)?;

@@ -92,6 +92,7 @@ mod tests {
             peak_rss_bytes: None,
             peak_rss_reset: None,
             static_solve: None,
+            scipy_csr: None,
         }
     }
 

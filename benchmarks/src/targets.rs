@@ -1,5 +1,6 @@
-//! The throughput targets of issues #2, #3, #4, #7 and #11 (the 100³ one-point cube), checked against a set of records,
-//! and the boundaries' overhead per step (issue #7).
+//! The throughput targets of issues #2, #3, #4, #7 and #11 (the 100³ one-point cube, dcfm
+//! against the scipy CSR leapfrog), checked against a set of records, and the boundaries'
+//! overhead per step (issue #7).
 
 use crate::record::ThroughputRecord;
 use crate::speedup::speedups;
@@ -24,6 +25,10 @@ pub const SPEEDUP_MIN_ELEMENTS: usize = 8000;
 pub const MAX_BYTES_PER_ELEMENT: f64 = 2048.0;
 /// The static sparse Cholesky of a 40³ cube (≈ 2e5 DOFs), whole static stage (issue #7).
 pub const STATIC_CHOLESKY_40_SECONDS: f64 = 30.0;
+
+/// Fully integrated elastic 40³ on 2 threads over the scipy CSR leapfrog of the same cube
+/// on one thread, measured in the same run (issue 11).
+pub const SCIPY_CSR_RATIO: f64 = 2.0;
 
 /// Largest extra time per step of the 40³ cube on seismic boundaries (absorbing base with
 /// input, free-field sides) over the fixed-base cube (issue #7).
@@ -57,6 +62,45 @@ pub fn boundary_overheads(records: &[ThroughputRecord]) -> Vec<BoundaryOverhead>
                 threads: r.threads,
                 overhead: b.steps_per_s / r.steps_per_s.max(1e-300) - 1.0,
                 machine_busy: starved(r) || starved(b),
+            });
+        }
+    }
+    out
+}
+
+/// dcfm against the scipy CSR leapfrog on one cube and dcfm thread count.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ScipyRatio {
+    /// The dcfm case, e.g. `cube40_full`.
+    pub case: String,
+    /// dcfm's threads (scipy ran on one).
+    pub threads: usize,
+    /// dcfm's element-updates/s over scipy's.
+    pub ratio: f64,
+    /// Whether either timing was starved by other processes.
+    pub machine_busy: bool,
+}
+
+/// Every `cube{n}_scipy_csr` row against the `cube{n}_full` rows timed before it in the
+/// same records (the last of each thread count), in thread order.
+pub fn scipy_ratios(records: &[ThroughputRecord]) -> Vec<ScipyRatio> {
+    let mut out = Vec::new();
+    for (i, s) in records.iter().enumerate() {
+        let Some(case) = crate::scipy_csr::dcfm_case(&s.case) else {
+            continue;
+        };
+        let mut dcfm: Vec<&ThroughputRecord> = Vec::new();
+        for r in records[..i].iter().filter(|r| r.case == case) {
+            dcfm.retain(|x| x.threads != r.threads);
+            dcfm.push(r);
+        }
+        dcfm.sort_by_key(|r| r.threads);
+        for r in dcfm {
+            out.push(ScipyRatio {
+                case: case.clone(),
+                threads: r.threads,
+                ratio: r.element_updates_per_s / s.element_updates_per_s.max(1e-300),
+                machine_busy: starved(r) || starved(s),
             });
         }
     }
@@ -140,6 +184,20 @@ pub fn check(records: &[ThroughputRecord]) -> Vec<TargetCheck> {
             machine_busy: o.machine_busy,
         });
     }
+    if let Some(q) = scipy_ratios(records)
+        .into_iter()
+        .rev()
+        .find(|q| q.case == "cube40_full" && q.threads == 2)
+    {
+        out.push(TargetCheck {
+            target: format!(
+                "cube40_full, 2 threads: >= {SCIPY_CSR_RATIO}x cube40_scipy_csr (scipy CSR leapfrog, 1 thread, same run)"
+            ),
+            value: q.ratio,
+            met: q.ratio >= SCIPY_CSR_RATIO,
+            machine_busy: q.machine_busy,
+        });
+    }
     for r in records.iter().filter(|r| r.contact_share.is_some()) {
         let share = r.contact_share.unwrap_or(0.0);
         out.push(TargetCheck {
@@ -168,10 +226,11 @@ pub fn check(records: &[ThroughputRecord]) -> Vec<TargetCheck> {
         });
     }
     let mut seen: Vec<&str> = Vec::new();
-    // Bytes per element of the element groups; the static rows carry the bytes of K and L.
+    // Bytes per element of the element groups; the static rows carry the bytes of K and L,
+    // the scipy rows those of scipy's CSR matrix.
     for r in records
         .iter()
-        .filter(|r| !r.case.contains("_pd_") && r.static_solve.is_none())
+        .filter(|r| !r.case.contains("_pd_") && r.static_solve.is_none() && r.scipy_csr.is_none())
     {
         if seen.contains(&r.case.as_str()) {
             continue;

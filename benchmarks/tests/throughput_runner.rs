@@ -7,7 +7,7 @@ use std::path::PathBuf;
 
 use dcfm::element::Integration;
 use dcfm_benchmarks::record::REQUIRED_KEYS;
-use dcfm_benchmarks::{history, run, speedup, targets, RunConfig};
+use dcfm_benchmarks::{history, run, speedup, targets, RunConfig, ScipyBaseline};
 
 fn scratch_history(tag: &str) -> PathBuf {
     let dir = PathBuf::from(env!("CARGO_TARGET_TMPDIR"));
@@ -30,6 +30,8 @@ fn tiny(history: Option<PathBuf>) -> RunConfig {
         boundaries: false,
         interface_sizes: Vec::new(),
         static_sizes: Vec::new(),
+        // The scipy rows have their own test (scipy_csr_row.rs).
+        scipy: ScipyBaseline::Off,
         ..RunConfig::quick()
     }
 }

@@ -6,15 +6,18 @@
 //! ```
 //!
 //! Stdout: one JSON record per timed configuration (JSON Lines, pipe it to `jq`).
-//! Stderr: progress, the thread speed-ups of every case and the issue #2 targets.
-//! Every record is also appended to `benchmarks/history.jsonl` unless `--no-record`.
+//! Stderr: progress, the thread speed-ups of every case, dcfm over the scipy CSR leapfrog
+//! and the targets. Every record is also appended to `benchmarks/history.jsonl` unless
+//! `--no-record`. After every elastic `cube{n}_full` case the scipy CSR leapfrog runs on the
+//! same cube through Python (`--python`, else `$DCFM_BENCH_PYTHON`, else `.venv/bin/python`;
+//! `--no-scipy`: not at all).
 
 use std::io::Write;
 use std::path::PathBuf;
 use std::process::ExitCode;
 
 use clap::Parser;
-use dcfm_benchmarks::{run, speedup, targets, RunConfig};
+use dcfm_benchmarks::{run, speedup, targets, RunConfig, ScipyBaseline};
 
 #[derive(Debug, Parser)]
 #[command(about = "Time explicit steps on elastic hex8 cubes and record element-updates/s")]
@@ -47,6 +50,13 @@ struct Cli {
     /// History file to append to (default <workspace>/benchmarks/history.jsonl).
     #[arg(long)]
     history: Option<PathBuf>,
+    /// Python with numpy, scipy and scikit-fem for the scipy CSR rows (default
+    /// $DCFM_BENCH_PYTHON, else <workspace>/.venv/bin/python).
+    #[arg(long, conflicts_with = "no_scipy")]
+    python: Option<PathBuf>,
+    /// Do not run the scipy CSR leapfrog rows.
+    #[arg(long)]
+    no_scipy: bool,
 }
 
 fn main() -> ExitCode {
@@ -78,6 +88,12 @@ fn main() -> ExitCode {
     if cli.no_record {
         config.history = None;
     }
+    if let Some(p) = cli.python {
+        config.scipy = ScipyBaseline::Python(p);
+    }
+    if cli.no_scipy {
+        config.scipy = ScipyBaseline::Off;
+    }
     if let Some(path) = &config.history {
         eprintln!("recording to {}", path.display());
     }
@@ -98,6 +114,22 @@ fn main() -> ExitCode {
                 r.wall_s,
                 s.peak_rss_bytes
                     .map_or("n/a".to_string(), |b| format!("{:.2} GB", b as f64 / 1e9))
+            );
+            return;
+        }
+        if let Some(s) = &r.scipy_csr {
+            eprintln!(
+                "{:<18} scipy {} CSR leapfrog, 1 thread: {:>6} steps in {:6.2} s, {:9.3e} element-updates/s ({} DOFs, {:.3e} nonzeros; scikit-fem {} assembly {:.1} s){}",
+                r.case,
+                s.scipy,
+                r.steps,
+                r.wall_s,
+                r.element_updates_per_s,
+                s.dofs,
+                s.nnz as f64,
+                s.skfem,
+                s.assembly_s,
+                if targets::starved(r) { " (machine busy)" } else { "" }
             );
             return;
         }
@@ -135,6 +167,23 @@ fn main() -> ExitCode {
                 s.base_threads,
                 s.factor(),
                 100.0 * s.efficiency()
+            );
+        }
+    }
+    let ratios = targets::scipy_ratios(&records);
+    if !ratios.is_empty() {
+        eprintln!("\ndcfm over the scipy CSR leapfrog (1 thread) on the same cube, same run:");
+        for q in &ratios {
+            eprintln!(
+                "  {:<18} {} thread(s): {:.2}x{}",
+                q.case,
+                q.threads,
+                q.ratio,
+                if q.machine_busy {
+                    " (machine busy)"
+                } else {
+                    ""
+                }
             );
         }
     }

@@ -39,11 +39,11 @@ struct Cli {
     sizes: Option<Vec<usize>>,
     /// One-point elastic cubes run last, out of cache (default 100; 12 with --quick;
     /// empty: none).
-    #[arg(long, value_delimiter = ',')]
-    large_sizes: Option<Vec<usize>>,
+    #[arg(long, value_parser = size_list)]
+    large_sizes: Option<SizeList>,
     /// Static direct solves of n³ cubes (default 40; 8 with --quick; empty: none).
-    #[arg(long, value_delimiter = ',')]
-    static_sizes: Option<Vec<usize>>,
+    #[arg(long, value_parser = size_list)]
+    static_sizes: Option<SizeList>,
     /// Minimum timed wall time per configuration, seconds (default 2; 0.1 with --quick).
     #[arg(long)]
     min_wall: Option<f64>,
@@ -57,6 +57,22 @@ struct Cli {
     /// Do not run the scipy CSR leapfrog rows.
     #[arg(long)]
     no_scipy: bool,
+}
+
+/// A comma-separated list of cube divisions that may be empty (`--large-sizes ""`: none).
+#[derive(Clone, Debug)]
+struct SizeList(Vec<usize>);
+
+fn size_list(text: &str) -> Result<SizeList, String> {
+    text.split(',')
+        .map(str::trim)
+        .filter(|t| !t.is_empty())
+        .map(|t| {
+            t.parse::<usize>()
+                .map_err(|_| format!("`{t}` is not a cube division (a whole number ≥ 1)"))
+        })
+        .collect::<Result<Vec<_>, _>>()
+        .map(SizeList)
 }
 
 fn main() -> ExitCode {
@@ -73,10 +89,10 @@ fn main() -> ExitCode {
     if let Some(s) = cli.sizes {
         config.sizes = s;
     }
-    if let Some(s) = cli.large_sizes {
+    if let Some(SizeList(s)) = cli.large_sizes {
         config.large_one_point_sizes = s;
     }
-    if let Some(s) = cli.static_sizes {
+    if let Some(SizeList(s)) = cli.static_sizes {
         config.static_sizes = s;
     }
     if let Some(w) = cli.min_wall {

@@ -8,21 +8,38 @@
 //! so bonded pairs drift apart or into each other step by step.
 //!
 //! Interfaces that share a node form a group ([`group_interfaces`], at set-up). A group is
-//! solved by block Gauss–Seidel over its interfaces: each sweep solves every interface with
-//! the latest forces of the others in the predictor (its own forces of the previous sweep
-//! taken back and its records restored to the start of the step, keeping what the step has
-//! learnt: a pair that slid keeps μd, a broken bond stays broken). After the first sweep
-//! only the pairs at a junction (node or partner on another interface), the pairs that
-//! share a node with a point-to-surface system (its nodes in contact and their faces' nodes,
-//! from the step's contact search, `surface::StepFaces`) and those systems can change: a
-//! pair's force depends on the forces at its two nodes only, and pairs of one interface
-//! share no node. Each later sweep solves just those, once each (pairs, then the
-//! point-to-surface system of the interface, eqs. (16)–(22)); the other pairs keep their
-//! first solve. For sticking
-//! pairs the sweeps are alternating projections onto the pairs' constraints in the mass
-//! metric, which converge linearly when the constraints are consistent.
+//! solved directly: a pair's force depends on the forces at its two nodes only, and pairs
+//! of one interface share no node, so the pairs that are neither at a junction (node or
+//! partner on another interface) nor on a node of a point-to-surface system (its nodes in
+//! contact and their faces' nodes, from the step's contact search, `surface::StepFaces`)
+//! are solved on their own, once (eqs. (6)–(15)). The rest — junction pairs, coupled pairs
+//! and the point-to-surface nodes of every interface of the group — form one system: a
+//! pair is a constraint between node a and its partner (a one-node "face", φ = 1), a
+//! point-to-surface node one between the node and the contact point of its face, and
+//! Hᵢₖ = Δt² Σⱼ wⱼ eᵢ(j) eₖ(j) couples every two constraints that share a node j (eqs.
+//! (17)–(18) written for any constraints). The active set of `surface.rs` solves it with
+//! each constraint's own law — a bonded pair holds its gap and carries tension up to σt A
+//! and shear up to μs λ + cA, then loses its bond for the rest of the step; friction
+//! static, then kinetic; separation (eqs. (12)–(15)) — and a projected Gauss–Seidel polish
+//! checks that every constraint holds its law given the others (usually one or two
+//! sweeps). A loop of pairs (three interfaces pairing three coincident nodes) makes H
+//! singular; a Tikhonov term of 1e-11 of its largest diagonal in the direct solves picks
+//! the split of least norm, and the polish works on H itself.
 //!
-//! **What converges.** Three pairs joining three coincident nodes close a loop, and a
+//! Where the direct solve fails (a singular system the active set cannot settle, or
+//! constraints that cannot all hold — forces beyond 10⁶ times what any constraint needs on
+//! its own), its forces are taken back and the group falls back to block Gauss–Seidel
+//! over its interfaces: each sweep solves every interface with the latest forces of the
+//! others in the predictor (its own forces of the previous sweep taken back and its
+//! records restored to the start of the step, keeping what the step has learnt: a pair
+//! that slid keeps μd, a broken bond stays broken). After the first sweep only the
+//! junction pairs, the coupled pairs and the point-to-surface systems are solved again,
+//! once each. For sticking pairs the sweeps are alternating projections onto the pairs'
+//! constraints in the mass metric, which converge linearly when the constraints are
+//! consistent — slowly where a point-to-surface node meets a junction (200–2000 sweeps per
+//! step in the Yingxiuwan CI case at 5–8 s of the 20 s record, before the direct solve).
+//!
+//! **What converges** (the polish of a joint system and the sweeps alike). Three pairs joining three coincident nodes close a loop, and a
 //! force circulating round the loop (+f on one pair, carried on by the next two) leaves
 //! the net contact force of every node unchanged: the split of the loop's forces among its
 //! pairs is statically indeterminate, and the sweeps may walk along it without end — in

@@ -486,8 +486,13 @@ fn net_settled(s: &mut Scratch, first: bool) -> bool {
         g += 1;
         start = end;
     }
-    !first && change <= 1e-12 * fmax.max(f64::MIN_POSITIVE)
+    !first && change <= NET_TOLERANCE * fmax.max(f64::MIN_POSITIVE)
 }
+
+/// Largest change of a node's net contact force between two polish sweeps of a joint
+/// system, relative to the largest force, at which the polish stops: the tolerance of the
+/// joint sweeps (`joint.rs`).
+const NET_TOLERANCE: f64 = 1e-10;
 
 /// All closed nodes stick: (H R)ᵢ = bᵢ with the scalar, symmetric positive definite H acting
 /// on each component, so one sparse Cholesky factorisation of the m × m matrix H solves the

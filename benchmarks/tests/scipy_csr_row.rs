@@ -49,7 +49,15 @@ fn python() -> Option<PathBuf> {
 #[test]
 fn row_and_ratio_with_a_working_python() {
     let Some(python) = python() else {
-        eprintln!("no Python with scipy found (.venv or {PYTHON_ENV}): test not run");
+        // Without the project's environment (`scripts/setup.sh` not run) there is nothing
+        // to compare with; with it, a Python that cannot be found is a failure.
+        let venv = history::workspace_root().join(".venv");
+        assert!(
+            !venv.exists(),
+            "{} exists but no Python was found in it",
+            venv.display()
+        );
+        eprintln!("no .venv and no {PYTHON_ENV}: scipy row not run (run scripts/setup.sh)");
         return;
     };
     let (records, notes) = run_noting(&tiny(ScipyBaseline::Python(python)));

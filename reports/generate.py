@@ -663,9 +663,15 @@ def yingxiuwan_section(rep: Report, y: dict[str, Any]) -> None:
     s = y["summary"]
     rep.h('<section id="yingxiuwan"><h2>Yingxiuwan underground powerhouse</h2>')
     rep.m("## Yingxiuwan underground powerhouse\n")
-    keys = [k for k in ("title", "nodes", "elements", "steps", "dt", "end_time", "wall_s", "element_updates_per_s", "energy_residual_relative", "contact_unsettled_steps") if k in s]
-    rep.h('<div class="scroll"><table><tbody>' + "".join(f"<tr><th>{esc(k)}</th><td>{esc(num(s[k]) if isinstance(s[k], (int, float)) else s[k])}</td></tr>" for k in keys) + "</tbody></table></div>")
-    rep.m("| quantity | value |\n|---|---|\n" + "\n".join(f"| {k} | {s[k]} |" for k in keys) + "\n")
+    keys = [k for k in ("title", "nodes", "elements", "steps", "dt", "end_time", "wall_s", "element_updates_per_s", "energy_residual_relative", "contact_unsettled_steps", "contact_joint") if k in s]
+
+    def shown(v: Any) -> Any:
+        if isinstance(v, dict):
+            return ", ".join(f"{k} {v[k]}" for k in v)
+        return num(v) if isinstance(v, (int, float)) else v
+
+    rep.h('<div class="scroll"><table><tbody>' + "".join(f"<tr><th>{esc(k)}</th><td>{esc(shown(s[k]))}</td></tr>" for k in keys) + "</tbody></table></div>")
+    rep.m("| quantity | value |\n|---|---|\n" + "\n".join(f"| {k} | {shown(s[k]) if isinstance(s[k], dict) else s[k]} |" for k in keys) + "\n")
     checks = y.get("checks")
     if checks is None:
         rep.h('<p class="warn">No physics checks on record (results/yingxiuwan/checks.json, reports/yingxiuwan_checks.py).</p>')

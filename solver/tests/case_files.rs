@@ -97,6 +97,30 @@ fn errors_name_file_field_value_and_expectation() {
     assert!(e.contains("output.nodes[0] = 99999"), "{e}");
     let e = err(&SMALL.replace("rate = 1000.0", "rate = nan"));
     assert!(e.contains("loads.nodal[0].history.rate = NaN"), "{e}");
+    // Reinforcement mats: a good one loads; a bad cover, an unknown face set and a cover
+    // that puts the bars outside the mesh (deeper than the 2 m block) are named.
+    let mat = |face_set: &str, cover: &str| {
+        format!(
+            "{SMALL}\n[[anchors.mats]]\nname = \"m\"\nface_set = \"{face_set}\"\ncover = {cover}\n\
+             spacing = 0.25\ndiameter = 0.02\nyield_stress = 400e6\n"
+        )
+    };
+    parse_case(&mat("b.zmax", "0.05"), "case.toml", Path::new(".")).unwrap();
+    let e = err(&mat("b.zmax", "-0.05"));
+    assert!(
+        e.contains("case.toml: anchors.mats[0].cover = -0.05: must be > 0 (m)"),
+        "{e}"
+    );
+    let e = err(&mat("b.top", "0.05"));
+    assert!(
+        e.contains("anchors.mats[0].face_set = b.top") && e.contains("b.zmax"),
+        "{e}"
+    );
+    let e = err(&mat("b.zmax", "2.5"));
+    assert!(
+        e.contains("anchors.mats[0]") && e.contains("cover 2.5 m") && e.contains("leaves the mesh"),
+        "{e}"
+    );
 }
 
 proptest! {

@@ -198,6 +198,14 @@ fn main() -> ExitCode {
                     }
                 );
                 say!("memory    {:.0} bytes per element", m.bytes_per_element());
+                if let Some(a) = &m.anchors {
+                    for (group, bars, length, mass) in a.group_totals() {
+                        say!(
+                            "anchors   {group}: {bars} bars, {length:.1} m of steel, {:.1} t",
+                            mass / 1000.0
+                        );
+                    }
+                }
                 if let Some(b) = &m.boundaries {
                     for r in &b.reports {
                         say!("boundary  {}: {}", r.field, r.description);

@@ -99,6 +99,8 @@ pub struct AnchorSection {
     pub bars: Vec<BarSpec>,
     #[serde(default)]
     pub patterns: Vec<PatternSpec>,
+    #[serde(default)]
+    pub mats: Vec<crate::element::anchor_mat::MatSpec>,
 }
 
 /// One segment of a perfectly bonded bar, inside one host element.
@@ -355,6 +357,29 @@ impl AnchorBars {
 
     pub fn is_empty(&self) -> bool {
         self.bars.is_empty()
+    }
+
+    /// Per history group, in order of first appearance: (group, bars, total length in m,
+    /// steel mass in kg) — what `dcfm check` reports.
+    pub fn group_totals(&self) -> Vec<(String, usize, f64, f64)> {
+        let mut out: Vec<(String, usize, f64, f64)> = Vec::new();
+        for b in &self.bars {
+            let len = (0..3)
+                .map(|d| (b.end[d] - b.start[d]).powi(2))
+                .sum::<f64>()
+                .sqrt();
+            let k = match out.iter().position(|g| g.0 == b.group) {
+                Some(k) => k,
+                None => {
+                    out.push((b.group.clone(), 0, 0.0, 0.0));
+                    out.len() - 1
+                }
+            };
+            out[k].1 += 1;
+            out[k].2 += len;
+            out[k].3 += len * b.mass_per_length;
+        }
+        out
     }
 
     /// Steel mass of the perfectly bonded segments, added to their host nodes (half of a

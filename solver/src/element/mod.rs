@@ -3,6 +3,7 @@
 //! kernel also in SIMD lanes, `hex8_full_lanes`), lumped mass and the stable time step.
 
 pub mod anchor_bar;
+pub mod anchor_mat;
 pub mod anchor_pattern;
 pub mod colouring;
 pub mod fields;

@@ -1,11 +1,14 @@
-//! `[anchors]`: anchor bars given as lines (`[[anchors.bars]]`) or as patterns over a face
-//! set (`[[anchors.patterns]]`), superposed on their host elements; their steel mass goes
+//! `[anchors]`: anchor bars given as lines (`[[anchors.bars]]`), as patterns over a face
+//! set (`[[anchors.patterns]]`) or as reinforcement mats under one (`[[anchors.mats]]`),
+//! superposed on their host elements; their steel mass goes
 //! to the host nodes and their stiffness into the critical step.
 
 use crate::element::anchor_bar::{AnchorBars, AnchorSection, BarNames, SteelSpec};
+use crate::element::anchor_mat::mat_bars;
 use crate::element::anchor_pattern::pattern_points;
 use crate::element::host_locate::HostLocator;
 use crate::error::{DcfmError, Result};
+use crate::mesh::{Face, Mesh};
 use crate::model::Model;
 
 fn check_steel(steel: &SteelSpec, field: &str, label: &str) -> Result<()> {
@@ -42,9 +45,24 @@ fn check_steel(steel: &SteelSpec, field: &str, label: &str) -> Result<()> {
     Ok(())
 }
 
+/// The faces of `name`, or an error listing the mesh's face sets.
+fn face_set<'m>(mesh: &'m Mesh, name: &str, field: &str, label: &str) -> Result<&'m [Face]> {
+    mesh.face_sets.get(name).map(Vec::as_slice).ok_or_else(|| {
+        DcfmError::invalid(
+            label,
+            format!("{field}.face_set"),
+            name,
+            format!(
+                "a face set of the mesh (face sets: {:?})",
+                mesh.face_sets.keys().collect::<Vec<_>>()
+            ),
+        )
+    })
+}
+
 /// Build the bars of `[anchors]` into the model.
 pub(super) fn build_anchors(model: &mut Model, section: &AnchorSection, label: &str) -> Result<()> {
-    if section.bars.is_empty() && section.patterns.is_empty() {
+    if section.bars.is_empty() && section.patterns.is_empty() && section.mats.is_empty() {
         return Ok(());
     }
     let mesh = &model.mesh;
@@ -84,17 +102,7 @@ pub(super) fn build_anchors(model: &mut Model, section: &AnchorSection, label: &
                 ));
             }
         }
-        let faces = mesh.face_sets.get(&p.face_set).ok_or_else(|| {
-            DcfmError::invalid(
-                label,
-                format!("{field}.face_set"),
-                &p.face_set,
-                format!(
-                    "a face set of the mesh (face sets: {:?})",
-                    mesh.face_sets.keys().collect::<Vec<_>>()
-                ),
-            )
-        })?;
+        let faces = face_set(mesh, &p.face_set, &field, label)?;
         let group = p.name.clone().unwrap_or_else(|| format!("pattern{i}"));
         for (k, (start, dir)) in pattern_points(mesh, faces, p.spacing)
             .into_iter()
@@ -108,6 +116,40 @@ pub(super) fn build_anchors(model: &mut Model, section: &AnchorSection, label: &
             bars.add_bar(mesh, &locator, names, [start, end], &p.steel)
                 .map_err(|msg| {
                     DcfmError::invalid(label, field.clone(), format!("bar {k} from {start:?}"), msg)
+                })?;
+        }
+    }
+    for (i, m) in section.mats.iter().enumerate() {
+        let field = format!("anchors.mats[{i}]");
+        check_steel(&m.steel, &field, label)?;
+        for (name, v) in [("cover", m.cover), ("spacing", m.spacing)] {
+            if !(v.is_finite() && v > 0.0 && v < 1e4) {
+                return Err(DcfmError::invalid(
+                    label,
+                    format!("{field}.{name}"),
+                    v,
+                    "must be > 0 (m)",
+                ));
+            }
+        }
+        let faces = face_set(mesh, &m.face_set, &field, label)?;
+        let group = m.name.clone().unwrap_or_else(|| format!("mat{i}"));
+        let lines = mat_bars(mesh, faces, m.cover, m.spacing).map_err(|msg| {
+            DcfmError::invalid(label, format!("{field}.face_set"), &m.face_set, msg)
+        })?;
+        for (k, [start, end]) in lines.into_iter().enumerate() {
+            let names = BarNames {
+                name: format!("{group}.{k}"),
+                group: group.clone(),
+            };
+            bars.add_bar(mesh, &locator, names, [start, end], &m.steel)
+                .map_err(|msg| {
+                    DcfmError::invalid(
+                        label,
+                        field.clone(),
+                        format!("bar {k} from {start:?} to {end:?} (cover {} m)", m.cover),
+                        msg,
+                    )
                 })?;
         }
     }

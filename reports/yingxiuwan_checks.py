@@ -52,7 +52,15 @@ The checks:
   solver's to round-off of the interpolation, measured 5e-15 on the CI run); and every bar whose head
   (at the excavation face) moved into the cavern relative to its deep end by more than
   1e-9 of its length, δ = t·(u_deep − u_head) > 1e-9 L, has a positive length-weighted mean
-  force (its mean is EA δ/L as long as no segment yields).
+  force (its mean is EA δ/L as long as no segment yields; for a reinforcement mat's bars,
+  parallel to the surface, δ is simply the bar's elongation, the same statement);
+- the concrete holds together: on every whole-mesh frame, every node of the concrete
+  (the regions of material `concrete`) has moved since the first frame by at most 0.1 m
+  more than the concrete's median displacement — a tenth of the lining's thickness (1.0 m,
+  docs/yingxiuwan.md), the thinnest member. The elements are geometrically linear (small
+  displacements): a member displaced by a tenth of its thickness relative to the rest of
+  the structure has come off it (a falling crane-beam corbel or lining, docs/yingxiuwan.md
+  "Long runs"), and the model no longer describes it.
 
 The whole-mesh frames are those of full.pvd when the case writes compact frames
 (`[output.frames]`, docs/outputs.md), else those of case.pvd.
@@ -86,6 +94,7 @@ AREA_TOLERANCE = 1e-9
 UNSETTLED_ACCEPTED = 1e-6
 YIELD_TOLERANCE = 1e-8
 ANCHOR_STRAIN_FLOOR = 1e-9
+STRUCTURE_DRIFT_M = 0.1
 
 
 class CheckError(Exception):
@@ -190,7 +199,7 @@ def run_checks(run: Path, case_file: Path) -> list[dict[str, Any]]:
 
     anchors = case.get("anchors", {})
     worst_ratio = 0.0
-    for a in anchors.get("patterns", []) + anchors.get("bars", []):
+    for a in anchors.get("patterns", []) + anchors.get("bars", []) + anchors.get("mats", []):
         col = f"anchor_{a['name']}_max_force"
         if col not in cols:
             raise CheckError(f"{run / 'histories.csv'}: no column '{col}' for anchors '{a['name']}'")
@@ -217,9 +226,38 @@ def run_checks(run: Path, case_file: Path) -> list[dict[str, Any]]:
 
     steps = FrameSteps(summary)
     checks += damage_checks(frames, case, steps)
+    checks.append(structure_check(frames, case))
     if anchors:
         checks += anchor_checks(run, frames, case, steps)
     return checks
+
+
+def structure_check(frames: list[tuple[float, Path]], case: dict[str, Any]) -> dict[str, Any]:
+    """The concrete holds together: the largest displacement of a concrete node since the
+    first frame, less the concrete's median displacement since then, over every frame."""
+    concrete = [k for k, r in enumerate(case.get("regions", [])) if r.get("material") == "concrete"]
+    if not concrete:
+        raise CheckError("the case has no region of material 'concrete' to check for holding together")
+    worst, when, where = 0.0, frames[0][0], [math.nan] * 3
+    start: np.ndarray | None = None
+    for t, path in frames:
+        f = read_vtu(path, ["Points", "connectivity", "region", "displacement"])
+        conn = f["connectivity"].reshape(-1, 8).astype(np.int64)
+        nodes = np.unique(conn[np.isin(f["region"][:, 0].astype(np.int64), concrete)])
+        u = f["displacement"][nodes]
+        if start is None:
+            start = u
+        elif start.shape != u.shape:
+            raise CheckError(f"{path}: {len(nodes)} concrete nodes, the first frame had {len(start)}")
+        moved = u - start
+        drift = np.linalg.norm(moved - np.median(moved, axis=0), axis=1)
+        k = int(np.argmax(drift))
+        if drift[k] > worst:
+            worst, when, where = float(drift[k]), t, f["Points"][nodes[k]].tolist()
+    at = ", ".join(f"{v:.1f}" for v in where)
+    return check("concrete holds together", worst, STRUCTURE_DRIFT_M, worst <= STRUCTURE_DRIFT_M,
+                 f"largest displacement (m) of a concrete node since the first frame less the concrete's median, "
+                 f"at t = {when:g} s, node at ({at}); limit a tenth of the lining's thickness")
 
 
 class FrameSteps:
@@ -363,7 +401,7 @@ def anchor_checks(run: Path, frames: list[tuple[float, Path]], case: dict[str, A
     if not apvd.exists():
         raise CheckError(f"{apvd}: missing: the case has anchors but writes no per-bar output "
                          "([output.frames] anchors = true, docs/outputs.md)")
-    for kind in ("bars", "patterns"):
+    for kind in ("bars", "patterns", "mats"):
         for i, g in enumerate(case.get("anchors", {}).get(kind, [])):
             for key in ("bond_stiffness", "pretension"):
                 if g.get(key, 0.0):
@@ -403,7 +441,7 @@ def anchor_checks(run: Path, frames: list[tuple[float, Path]], case: dict[str, A
     nbars = int(bar.max()) + 1 if len(bar) else 0
     # EA of the bars when every group has the same (the frames do not name a bar's group):
     # then |N − EA ε| is reported too (perfect bond below yield: N = EA ε, docs/anchors.md).
-    groups = case.get("anchors", {}).get("bars", []) + case.get("anchors", {}).get("patterns", [])
+    groups = [g for kind in ("bars", "patterns", "mats") for g in case.get("anchors", {}).get(kind, [])]
     stiffness = {g.get("young", 200e9) * math.pi * g["diameter"] ** 2 / 4.0 for g in groups}
     ea = next(iter(stiffness)) if len(stiffness) == 1 else None
     deviation = 0.0

@@ -2,7 +2,8 @@
 broken: a penetrating contact node, a damage variable that decreases, a damaged volume
 that drops, an anchor above its yield force, an interface whose state areas do not add up,
 damage without plastic flow, an undamaged element beyond the yield surface, a damaged one
-outside its current surface, a bolt in compression where the rock moved into the cavern."""
+outside its current surface, a bolt in compression where the rock moved into the cavern,
+concrete that comes apart."""
 
 from __future__ import annotations
 
@@ -106,13 +107,13 @@ def uniaxial(s: float) -> list[float]:
 def make_run(tmp: Path, *, gap: float = 0.0, dt_drop: float = 0.0, dv_drop: float = 0.0,
              anchor: float = 0.5, area_drift: float = 0.0, compressed: bool = False,
              no_flow: bool = False, undamaged_stress: float = 0.5, damaged_stress: float = 0.9,
-             bolt_sign: float = 1.0, full_pvd: bool = False) -> tuple[Path, Path]:
+             bolt_sign: float = 1.0, full_pvd: bool = False, fall: float = 0.0) -> tuple[Path, Path]:
     """A run of two elements and one bolt over two frames (t = 0: the state at which the
     bolt is installed; t = 1 s). Element 0 (rock, one point) cracks in uniaxial tension,
     its stress at `damaged_stress` × f_t0 (effective), its plastic strain growing unless
     `no_flow`; element 1 (lining, full integration) stays undamaged in uniaxial tension,
     0.5 f_t0 at t = 0 and `undamaged_stress` × f_t0 at t = 1 s. The rock stretches by STRETCH along the bolt, whose force
-    is `bolt_sign` × EA STRETCH."""
+    is `bolt_sign` × EA STRETCH. The lining's far face (x = 2) moves down by `fall` at t = 1 s."""
     run = tmp / "run"
     run.mkdir()
     case = tmp / "case.toml"
@@ -123,6 +124,7 @@ def make_run(tmp: Path, *, gap: float = 0.0, dt_drop: float = 0.0, dv_drop: floa
         gaps = np.array([0.0, gap if k == 1 else 0.0, 1e-4] + [0.0] * 9)
         u = np.zeros((12, 3))
         u[:, 0] = STRETCH * POINTS[:, 0] * k
+        u[POINTS[:, 0] == 2.0, 2] -= fall * k
         d_t = np.array([0.1 + 0.1 * k - (dt_drop if k == 1 else 0.0), 0.0])
         d_c = np.zeros(2)
         # D of eq. (24) in uniaxial tension (r = 1, s = 1): d_t.
@@ -181,6 +183,7 @@ def test_a_sound_run_passes_in_both_layouts(tmp_path, compressed, full_pvd):
         ({"no_flow": True}, "damage only with plastic flow"),
         ({"undamaged_stress": 1.001}, "undamaged elements inside the initial yield surface"),
         ({"damaged_stress": 1.001}, "damaged elements on or inside the yield surface"),
+        ({"fall": 0.5}, "concrete holds together"),
     ],
 )
 def test_broken_physics_fails_its_check(tmp_path, broken, name):
@@ -284,3 +287,18 @@ def test_a_name_that_is_a_point_and_a_cell_field_reads_as_the_cell_field(tmp_pat
     got = yc.read_vtu(path, ["active", "connectivity"])
     assert got["active"][:, 0].tolist() == [1.0, 0.0]
     assert got["connectivity"].shape == (16, 1)
+
+
+@pytest.mark.parametrize("share, fails", [(0.99, False), (1.01, True)])
+def test_a_mat_above_its_yield_force_fails(tmp_path, share, fails):
+    """Reinforcement mats (`[[anchors.mats]]`) are checked against their yield force like
+    the bolts: a mat's largest force of 1.01 × f_y π d²/4 fails, 0.99 × passes."""
+    run, case = make_run(tmp_path)
+    case.write_text(case.read_text(encoding="utf-8") + '\n[[anchors.mats]]\nname = "m"\nface_set = "f"\n'
+                    'cover = 0.05\nspacing = 0.2\ndiameter = 0.02\nyield_stress = 400e6\n', encoding="utf-8")
+    hist = run / "histories.csv"
+    lines = hist.read_text(encoding="utf-8").splitlines()
+    force = share * 400e6 * np.pi * 0.02**2 / 4
+    hist.write_text("\n".join([lines[0] + ",anchor_m_max_force", lines[1] + ",0.0", lines[2] + f",{force}"]) + "\n",
+                    encoding="utf-8")
+    assert failed(run, case) == ({"anchors within yield"} if fails else set())

@@ -138,10 +138,13 @@ impl ContactSystem {
         inp: &ContactStepInput,
         r: &mut [[f64; 3]],
     ) -> Result<()> {
+        self.joint_surface.clear();
         for &k in members {
             let iface = &mut interfaces[k];
             begin_step(iface);
             iface.snapshot.clone_from(&iface.slaves);
+            let surface = iface.slaves.iter().any(|s| s.surface && s.active);
+            self.joint_surface.push(surface);
         }
         self.joint_stats.group_steps += 1;
         if self.direct_joint {
@@ -188,17 +191,16 @@ impl ContactSystem {
         sys.active.clear();
         sys.touched.clear();
         sys.joint = true;
-        for &k in members {
+        for (m, &k) in members.iter().enumerate() {
             let iface = &mut interfaces[k];
-            let surface = iface.slaves.iter().any(|s| s.surface && s.active);
+            let surface = self.joint_surface[m];
             if surface {
                 surface::step_faces(iface, inp, stamp, &mut sys.grid);
             }
             self.point_to_point(iface, inp, r, Pairs::Alone(surface.then_some(stamp)));
         }
-        for &k in members {
+        for (&k, &surface) in members.iter().zip(&self.joint_surface) {
             let iface = &mut interfaces[k];
-            let surface = iface.slaves.iter().any(|s| s.surface && s.active);
             let alone = Pairs::Alone(surface.then_some(stamp));
             for si in 0..iface.slaves.len() {
                 let s = &iface.slaves[si];

@@ -153,6 +153,10 @@ pub struct ContactSystem {
     /// Net contact force of each node of the group in the previous sweep of a joint solve
     /// (`joint.rs`), in the order of `touched`; empty between solves.
     joint_prev: Vec<[f64; 3]>,
+    /// Whether each member of the group being solved (`joint.rs`, in the order of its
+    /// members) has point-to-surface nodes, filled once at the start of its step (neither
+    /// flag of a record changes within a step: switches are applied after the solve).
+    joint_surface: Vec<bool>,
     /// Work of the joint solves (see [`JointStats`]).
     joint_stats: JointStats,
     /// Groups are solved directly (`joint.rs`), the sweeps only as the fallback; false:
@@ -192,6 +196,7 @@ impl ContactSystem {
             groups,
             unsettled: (0, 0.0),
             joint_prev: Vec::new(),
+            joint_surface: Vec::new(),
             joint_stats: JointStats::default(),
             direct_joint: true,
         })

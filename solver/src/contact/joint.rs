@@ -277,11 +277,11 @@ impl ContactSystem {
             if sweep == 1 {
                 late_from = self.joint_stats.pair_solves;
             }
-            for &k in members {
+            for (m, &k) in members.iter().enumerate() {
                 let iface = &mut interfaces[k];
                 if sweep == 0 {
                     self.interface_step(iface, inp, r)?;
-                } else if iface.slaves.iter().any(|s| s.surface && s.active) {
+                } else if self.joint_surface[m] {
                     // One Gauss–Seidel sweep of the interface's parts that the others can
                     // change: the pairs at a junction or sharing a node with the
                     // point-to-surface system, then the system, each with the latest forces

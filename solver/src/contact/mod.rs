@@ -154,8 +154,10 @@ pub struct ContactSystem {
     /// (`joint.rs`), in the order of `touched`; empty between solves.
     joint_prev: Vec<[f64; 3]>,
     /// Whether each member of the group being solved (`joint.rs`, in the order of its
-    /// members) has point-to-surface nodes, filled once at the start of its step (neither
-    /// flag of a record changes within a step: switches are applied after the solve).
+    /// members) has point-to-surface nodes, filled once at the start of its step for the
+    /// direct solve and every sweep of the fallback (neither flag of a record changes
+    /// within a step: the records restored from the snapshot keep them, switches are
+    /// applied after the solve).
     joint_surface: Vec<bool>,
     /// Work of the joint solves (see [`JointStats`]).
     joint_stats: JointStats,

@@ -55,8 +55,8 @@
 
 use super::geom::{axpy, dot, norm, sub, tangential};
 use super::{
-    apply_switches, begin_step, record_pair, restart, surface, ContactStepInput, ContactSystem,
-    Interface, PairOutcome, PairParams, PairState, Pairs, NONE,
+    apply_switches, begin_step, record_pair, restart, restart_record, surface, ContactStepInput,
+    ContactSystem, Interface, PairOutcome, PairParams, PairState, Pairs, NONE,
 };
 use crate::error::{DcfmError, Result};
 
@@ -276,24 +276,32 @@ impl ContactSystem {
             self.joint_stats.max_sweeps = self.joint_stats.max_sweeps.max(count);
             if sweep == 1 {
                 late_from = self.joint_stats.pair_solves;
+                self.visit_lists(interfaces, members);
             }
             for (m, &k) in members.iter().enumerate() {
                 let iface = &mut interfaces[k];
                 if sweep == 0 {
                     self.interface_step(iface, inp, r)?;
-                } else if self.joint_surface[m] {
-                    // One Gauss–Seidel sweep of the interface's parts that the others can
-                    // change: the pairs at a junction or sharing a node with the
-                    // point-to-surface system, then the system, each with the latest forces
-                    // of the rest.
-                    let coupled = Pairs::Coupled(self.stamp);
-                    restart(iface, r, false, coupled);
-                    self.point_to_point(iface, inp, r, coupled);
-                    restart(iface, r, true, Pairs::All);
+                    continue;
+                }
+                // One Gauss–Seidel sweep of the interface's parts that the others can
+                // change: the pairs at a junction (or, with a point-to-surface system,
+                // sharing a node with it), then the system, each with the latest forces of
+                // the rest.
+                let at = &self.joint_visit_at;
+                let (pairs, nodes) = (at[2 * m]..at[2 * m + 1], at[2 * m + 1]..at[2 * m + 2]);
+                for i in pairs.clone() {
+                    restart_record(iface, r, self.joint_visit[i] as usize);
+                }
+                for i in pairs {
+                    let k = self.joint_visit[i] as usize;
+                    self.pair_step(iface, inp, r, k);
+                }
+                if self.joint_surface[m] {
+                    for i in nodes {
+                        restart_record(iface, r, self.joint_visit[i] as usize);
+                    }
                     self.surface_step(iface, inp, r)?;
-                } else {
-                    restart(iface, r, false, Pairs::Junctions);
-                    self.point_to_point(iface, inp, r, Pairs::Junctions);
                 }
             }
             let mut fmax: f64 = 0.0;
@@ -344,6 +352,43 @@ impl ContactSystem {
                 inp.step, inp.time
             ),
         })
+    }
+}
+
+impl ContactSystem {
+    /// The records that the sweeps after the first visit (`joint_visit`, member `m`'s at
+    /// `joint_visit_at[2m..2m + 3]`): the pairs at a junction or, in a member with a
+    /// point-to-surface system, sharing a node with it (`Pairs::Coupled`, from the contact
+    /// search of the first sweep; `Pairs::Junctions` otherwise), then, in such a member,
+    /// its point-to-surface records. Found once: neither a record's flags nor the step's
+    /// contact search change over the sweeps.
+    fn visit_lists(&mut self, interfaces: &[Interface], members: &[usize]) {
+        self.joint_visit.clear();
+        self.joint_visit_at.clear();
+        self.joint_visit_at.push(0);
+        for (m, &k) in members.iter().enumerate() {
+            let iface = &interfaces[k];
+            let surface = self.joint_surface[m];
+            let which = if surface {
+                Pairs::Coupled(self.stamp)
+            } else {
+                Pairs::Junctions
+            };
+            for (i, s) in iface.slaves.iter().enumerate() {
+                if !s.surface && which.selects(&iface.faces, i, s) {
+                    self.joint_visit.push(i as u32);
+                }
+            }
+            self.joint_visit_at.push(self.joint_visit.len());
+            if surface {
+                for (i, s) in iface.slaves.iter().enumerate() {
+                    if s.surface {
+                        self.joint_visit.push(i as u32);
+                    }
+                }
+            }
+            self.joint_visit_at.push(self.joint_visit.len());
+        }
     }
 }
 

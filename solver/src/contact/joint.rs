@@ -55,8 +55,8 @@
 
 use super::geom::{axpy, dot, norm, sub, tangential};
 use super::{
-    apply_switches, begin_step, record_pair, restart, surface, ContactStepInput, ContactSystem,
-    Interface, PairOutcome, PairParams, PairState, Pairs, NONE,
+    apply_switches, begin_step, record_pair, restart, restart_record, surface, ContactStepInput,
+    ContactSystem, Interface, PairOutcome, PairParams, PairState, Pairs, NONE,
 };
 use crate::error::{DcfmError, Result};
 
@@ -138,10 +138,13 @@ impl ContactSystem {
         inp: &ContactStepInput,
         r: &mut [[f64; 3]],
     ) -> Result<()> {
+        self.joint_surface.clear();
         for &k in members {
             let iface = &mut interfaces[k];
             begin_step(iface);
             iface.snapshot.clone_from(&iface.slaves);
+            let surface = iface.slaves.iter().any(|s| s.surface && s.active);
+            self.joint_surface.push(surface);
         }
         self.joint_stats.group_steps += 1;
         if self.direct_joint {
@@ -188,17 +191,16 @@ impl ContactSystem {
         sys.active.clear();
         sys.touched.clear();
         sys.joint = true;
-        for &k in members {
+        for (m, &k) in members.iter().enumerate() {
             let iface = &mut interfaces[k];
-            let surface = iface.slaves.iter().any(|s| s.surface && s.active);
+            let surface = self.joint_surface[m];
             if surface {
                 surface::step_faces(iface, inp, stamp, &mut sys.grid);
             }
             self.point_to_point(iface, inp, r, Pairs::Alone(surface.then_some(stamp)));
         }
-        for &k in members {
+        for (&k, &surface) in members.iter().zip(&self.joint_surface) {
             let iface = &mut interfaces[k];
-            let surface = iface.slaves.iter().any(|s| s.surface && s.active);
             let alone = Pairs::Alone(surface.then_some(stamp));
             for si in 0..iface.slaves.len() {
                 let s = &iface.slaves[si];
@@ -274,24 +276,32 @@ impl ContactSystem {
             self.joint_stats.max_sweeps = self.joint_stats.max_sweeps.max(count);
             if sweep == 1 {
                 late_from = self.joint_stats.pair_solves;
+                self.visit_lists(interfaces, members);
             }
-            for &k in members {
+            for (m, &k) in members.iter().enumerate() {
                 let iface = &mut interfaces[k];
                 if sweep == 0 {
                     self.interface_step(iface, inp, r)?;
-                } else if iface.slaves.iter().any(|s| s.surface && s.active) {
-                    // One Gauss–Seidel sweep of the interface's parts that the others can
-                    // change: the pairs at a junction or sharing a node with the
-                    // point-to-surface system, then the system, each with the latest forces
-                    // of the rest.
-                    let coupled = Pairs::Coupled(self.stamp);
-                    restart(iface, r, false, coupled);
-                    self.point_to_point(iface, inp, r, coupled);
-                    restart(iface, r, true, Pairs::All);
+                    continue;
+                }
+                // One Gauss–Seidel sweep of the interface's parts that the others can
+                // change: the pairs at a junction (or, with a point-to-surface system,
+                // sharing a node with it), then the system, each with the latest forces of
+                // the rest.
+                let at = &self.joint_visit_at;
+                let (pairs, nodes) = (at[2 * m]..at[2 * m + 1], at[2 * m + 1]..at[2 * m + 2]);
+                for i in pairs.clone() {
+                    restart_record(iface, r, self.joint_visit[i] as usize);
+                }
+                for i in pairs {
+                    let k = self.joint_visit[i] as usize;
+                    self.pair_step(iface, inp, r, k);
+                }
+                if self.joint_surface[m] {
+                    for i in nodes {
+                        restart_record(iface, r, self.joint_visit[i] as usize);
+                    }
                     self.surface_step(iface, inp, r)?;
-                } else {
-                    restart(iface, r, false, Pairs::Junctions);
-                    self.point_to_point(iface, inp, r, Pairs::Junctions);
                 }
             }
             let mut fmax: f64 = 0.0;
@@ -342,6 +352,43 @@ impl ContactSystem {
                 inp.step, inp.time
             ),
         })
+    }
+}
+
+impl ContactSystem {
+    /// The records that the sweeps after the first visit (`joint_visit`, member `m`'s at
+    /// `joint_visit_at[2m..2m + 3]`): the pairs at a junction or, in a member with a
+    /// point-to-surface system, sharing a node with it (`Pairs::Coupled`, from the contact
+    /// search of the first sweep; `Pairs::Junctions` otherwise), then, in such a member,
+    /// its point-to-surface records. Found once: neither a record's flags nor the step's
+    /// contact search change over the sweeps.
+    fn visit_lists(&mut self, interfaces: &[Interface], members: &[usize]) {
+        self.joint_visit.clear();
+        self.joint_visit_at.clear();
+        self.joint_visit_at.push(0);
+        for (m, &k) in members.iter().enumerate() {
+            let iface = &interfaces[k];
+            let surface = self.joint_surface[m];
+            let which = if surface {
+                Pairs::Coupled(self.stamp)
+            } else {
+                Pairs::Junctions
+            };
+            for (i, s) in iface.slaves.iter().enumerate() {
+                if !s.surface && which.selects(&iface.faces, i, s) {
+                    self.joint_visit.push(i as u32);
+                }
+            }
+            self.joint_visit_at.push(self.joint_visit.len());
+            if surface {
+                for (i, s) in iface.slaves.iter().enumerate() {
+                    if s.surface {
+                        self.joint_visit.push(i as u32);
+                    }
+                }
+            }
+            self.joint_visit_at.push(self.joint_visit.len());
+        }
     }
 }
 

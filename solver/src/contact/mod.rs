@@ -153,6 +153,17 @@ pub struct ContactSystem {
     /// Net contact force of each node of the group in the previous sweep of a joint solve
     /// (`joint.rs`), in the order of `touched`; empty between solves.
     joint_prev: Vec<[f64; 3]>,
+    /// Whether each member of the group being solved (`joint.rs`, in the order of its
+    /// members) has point-to-surface nodes, filled once at the start of its step for the
+    /// direct solve and every sweep of the fallback (neither flag of a record changes
+    /// within a step: the records restored from the snapshot keep them, switches are
+    /// applied after the solve).
+    joint_surface: Vec<bool>,
+    /// The records that the sweeps of a group after the first visit, per member: pairs,
+    /// then point-to-surface records (`joint::visit_lists`); refilled for each fallback.
+    joint_visit: Vec<u32>,
+    /// Where each member's two lists start in `joint_visit` (2 × members + 1 entries).
+    joint_visit_at: Vec<usize>,
     /// Work of the joint solves (see [`JointStats`]).
     joint_stats: JointStats,
     /// Groups are solved directly (`joint.rs`), the sweeps only as the fallback; false:
@@ -192,6 +203,9 @@ impl ContactSystem {
             groups,
             unsettled: (0, 0.0),
             joint_prev: Vec::new(),
+            joint_surface: Vec::new(),
+            joint_visit: Vec::new(),
+            joint_visit_at: Vec::new(),
             joint_stats: JointStats::default(),
             direct_joint: true,
         })
@@ -424,64 +438,72 @@ impl ContactSystem {
         r: &mut [[f64; 3]],
         which: Pairs,
     ) {
-        let dt2 = inp.dt * inp.dt;
-        let base = PairParams {
-            mu_s: iface.mu_s,
-            mu_d: iface.mu_d,
-            shear_capacity: 0.0,
-            tensile_capacity: 0.0,
-        };
-        let faces = &iface.faces;
-        for (k, s) in iface.slaves.iter_mut().enumerate() {
-            if s.surface || s.partner == NONE || !s.active || !which.selects(faces, k, s) {
-                continue;
+        for k in 0..iface.slaves.len() {
+            if which.selects(&iface.faces, k, &iface.slaves[k]) {
+                self.pair_step(iface, inp, r, k);
             }
-            self.joint_stats.pair_solves += 1;
-            let (a, b) = (s.node as usize, s.partner as usize);
-            let (wa, wb) = (inp.inv_mass[a], inp.inv_mass[b]);
-            let w_sum = wa + wb;
-            let ua = axpy(inp.u_pred[a], dt2 * wa, r[a]);
-            let ub = axpy(inp.u_pred[b], dt2 * wb, r[b]);
-            let rel_pred = sub(sub(ub, ua), s.rel0);
-            let rel_old = sub(sub(inp.u_old[b], inp.u_old[a]), s.rel0);
-            if w_sum <= 0.0 {
-                // Both sides fixed: nothing can move, no force is needed.
-                s.gap = dot(rel_pred, s.normal);
-                continue;
-            }
-            let params = PairParams {
-                shear_capacity: iface.cohesion * s.area,
-                tensile_capacity: iface.tensile * s.area,
-                // A pair that slid in an earlier sweep of this step keeps μd.
-                mu_s: if s.slid { iface.mu_d } else { iface.mu_s },
-                ..base
-            };
-            // A pair that lost its bond in an earlier sweep of this step stays unbonded.
-            let state = if s.broke && s.state == PairState::Bonded {
-                PairState::Stick
-            } else {
-                s.state
-            };
-            let pin = PairInput {
-                n: s.normal,
-                w_sum,
-                dt: inp.dt,
-                rel_pred,
-                rel_old,
-            };
-            let out = solve_pair(state, &params, &pin);
-            r[a] = geom::add(r[a], out.r);
-            r[b] = sub(r[b], out.r);
-            let m = &mut self.mark;
-            for k in [s.node, s.partner] {
-                if m[k as usize] != self.stamp {
-                    m[k as usize] = self.stamp;
-                    self.touched.push(k);
-                }
-            }
-            let rel_new = axpy(rel_pred, -w_sum * dt2, out.r);
-            record_pair(s, &out, state, rel_new, rel_old);
         }
+    }
+
+    /// Pair record `k` of `iface`, if in point-to-point contact: its force from the pair
+    /// kernel (eqs. (6)–(15)) added to `r`, its nodes marked, its record updated.
+    fn pair_step(
+        &mut self,
+        iface: &mut Interface,
+        inp: &ContactStepInput,
+        r: &mut [[f64; 3]],
+        k: usize,
+    ) {
+        let s = &mut iface.slaves[k];
+        if s.surface || s.partner == NONE || !s.active {
+            return;
+        }
+        let dt2 = inp.dt * inp.dt;
+        self.joint_stats.pair_solves += 1;
+        let (a, b) = (s.node as usize, s.partner as usize);
+        let (wa, wb) = (inp.inv_mass[a], inp.inv_mass[b]);
+        let w_sum = wa + wb;
+        let ua = axpy(inp.u_pred[a], dt2 * wa, r[a]);
+        let ub = axpy(inp.u_pred[b], dt2 * wb, r[b]);
+        let rel_pred = sub(sub(ub, ua), s.rel0);
+        let rel_old = sub(sub(inp.u_old[b], inp.u_old[a]), s.rel0);
+        if w_sum <= 0.0 {
+            // Both sides fixed: nothing can move, no force is needed.
+            s.gap = dot(rel_pred, s.normal);
+            return;
+        }
+        let params = PairParams {
+            shear_capacity: iface.cohesion * s.area,
+            tensile_capacity: iface.tensile * s.area,
+            // A pair that slid in an earlier sweep of this step keeps μd.
+            mu_s: if s.slid { iface.mu_d } else { iface.mu_s },
+            mu_d: iface.mu_d,
+        };
+        // A pair that lost its bond in an earlier sweep of this step stays unbonded.
+        let state = if s.broke && s.state == PairState::Bonded {
+            PairState::Stick
+        } else {
+            s.state
+        };
+        let pin = PairInput {
+            n: s.normal,
+            w_sum,
+            dt: inp.dt,
+            rel_pred,
+            rel_old,
+        };
+        let out = solve_pair(state, &params, &pin);
+        r[a] = geom::add(r[a], out.r);
+        r[b] = sub(r[b], out.r);
+        let m = &mut self.mark;
+        for k in [s.node, s.partner] {
+            if m[k as usize] != self.stamp {
+                m[k as usize] = self.stamp;
+                self.touched.push(k);
+            }
+        }
+        let rel_new = axpy(rel_pred, -w_sum * dt2, out.r);
+        record_pair(s, &out, state, rel_new, rel_old);
     }
 }
 
@@ -538,32 +560,38 @@ fn begin_step(iface: &mut Interface) {
 /// and restore their records to the start of the step, `iface.snapshot` (keeping what the
 /// step has learnt: slid, broke).
 fn restart(iface: &mut Interface, r: &mut [[f64; 3]], surface: bool, which: Pairs) {
-    let faces = &iface.faces;
-    for (k, (s, snap)) in iface.slaves.iter_mut().zip(&iface.snapshot).enumerate() {
-        if s.surface != surface || (!surface && !which.selects(faces, k, s)) {
-            continue;
+    for k in 0..iface.slaves.len().min(iface.snapshot.len()) {
+        let s = &iface.slaves[k];
+        if s.surface == surface && (surface || which.selects(&iface.faces, k, s)) {
+            restart_record(iface, r, k);
         }
-        let a = s.node as usize;
-        r[a] = sub(r[a], s.force);
-        if s.surface {
-            if s.face != NONE {
-                let face = iface.b_faces[s.face as usize];
-                let phi = geom::face_shape(s.xi[0], s.xi[1]);
-                for j in 0..4 {
-                    let k = face[j] as usize;
-                    r[k] = axpy(r[k], phi[j], s.force);
-                }
-            }
-        } else if s.partner != NONE {
-            let b = s.partner as usize;
-            r[b] = geom::add(r[b], s.force);
-        }
-        let (slid, broke) = (s.slid, s.broke);
-        s.clone_from(snap);
-        s.slid = slid;
-        s.broke = broke;
-        s.force = [0.0; 3];
     }
+}
+
+/// Take back the force of record `k` of `iface` (a pair or a point-to-surface node) and
+/// restore the record to the start of the step ([`restart`]).
+fn restart_record(iface: &mut Interface, r: &mut [[f64; 3]], k: usize) {
+    let s = &mut iface.slaves[k];
+    let a = s.node as usize;
+    r[a] = sub(r[a], s.force);
+    if s.surface {
+        if s.face != NONE {
+            let face = iface.b_faces[s.face as usize];
+            let phi = geom::face_shape(s.xi[0], s.xi[1]);
+            for j in 0..4 {
+                let k = face[j] as usize;
+                r[k] = axpy(r[k], phi[j], s.force);
+            }
+        }
+    } else if s.partner != NONE {
+        let b = s.partner as usize;
+        r[b] = geom::add(r[b], s.force);
+    }
+    let (slid, broke) = (s.slid, s.broke);
+    s.clone_from(&iface.snapshot[k]);
+    s.slid = slid;
+    s.broke = broke;
+    s.force = [0.0; 3];
 }
 
 #[cfg(test)]

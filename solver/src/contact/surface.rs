@@ -71,6 +71,8 @@ pub struct Scratch {
     reg: f64,
     /// Net contact force per node of the previous polish sweep (`net_settled`).
     net_prev: Vec<[f64; 3]>,
+    /// Row ranges of the sorted H list in the polish: row i is `h[row[i]..row[i + 1]]`.
+    row: Vec<usize>,
 }
 
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -374,7 +376,9 @@ fn polish(s: &mut Scratch, dt: f64) -> std::result::Result<usize, String> {
     const MAX_SWEEPS: usize = 2000;
     let m = s.active.len();
     // Row ranges of the sorted H list.
-    let mut row = vec![0usize; m + 1];
+    let row = &mut s.row;
+    row.clear();
+    row.resize(m + 1, 0);
     for &(i, _, _) in &s.h {
         row[i + 1] += 1;
     }
@@ -392,7 +396,7 @@ fn polish(s: &mut Scratch, dt: f64) -> std::result::Result<usize, String> {
             }
             let mut hii = 0.0;
             let mut coupled = [0.0; 3];
-            for &(_, k, h) in &s.h[row[i]..row[i + 1]] {
+            for &(_, k, h) in &s.h[s.row[i]..s.row[i + 1]] {
                 if k == i {
                     hii = h;
                 } else {

@@ -127,6 +127,8 @@ pub(crate) fn check_strings(path: &Path, field_data: &[VtuStrings]) -> Result<()
     }
 }
 
+/// Refuse fields of the wrong size ([`check_field_sizes`]) and cells with a node index
+/// beyond the `n_points` points, naming `path` and the field or cell.
 fn check(
     path: &Path,
     n_points: usize,
@@ -134,28 +136,7 @@ fn check(
     point_fields: &[VtuField],
     cell_fields: &[VtuField],
 ) -> Result<()> {
-    for (kind, fields, n) in [
-        ("point field", point_fields, n_points),
-        ("cell field", cell_fields, cells.len()),
-    ] {
-        for f in fields {
-            if f.components == 0 || f.values.len() != f.components * n {
-                return Err(DcfmError::invalid(
-                    label(path),
-                    format!("{kind} '{}'", f.name),
-                    format!("{} values, {} components", f.values.len(), f.components),
-                    format!(
-                        "components >= 1 and components x {n} values ({n} {}s)",
-                        if kind == "point field" {
-                            "point"
-                        } else {
-                            "cell"
-                        }
-                    ),
-                ));
-            }
-        }
-    }
+    check_field_sizes(path, point_fields, n_points, cell_fields, cells.len())?;
     for (c, conn) in cells.iter().enumerate() {
         if let Some(bad) = conn.iter().find(|&&a| a as usize >= n_points) {
             return Err(DcfmError::invalid(
@@ -171,7 +152,7 @@ fn check(
 
 /// Refuse a field without components or without `components` values for each of the
 /// `n_points` points (`point_fields`) or `n_cells` cells (`cell_fields`), naming `path`
-/// and the field ([`write_vtu_lines`], `super::vtu_compressed`).
+/// and the field ([`write_vtu`], [`write_vtu_lines`], `super::vtu_compressed`).
 pub(crate) fn check_field_sizes(
     path: &Path,
     point_fields: &[VtuField],
@@ -180,16 +161,16 @@ pub(crate) fn check_field_sizes(
     n_cells: usize,
 ) -> Result<()> {
     for (kind, fields, n) in [
-        ("point field", point_fields, n_points),
-        ("cell field", cell_fields, n_cells),
+        ("point", point_fields, n_points),
+        ("cell", cell_fields, n_cells),
     ] {
         for f in fields {
             if f.components == 0 || f.values.len() != f.components * n {
                 return Err(DcfmError::invalid(
                     label(path),
-                    format!("{kind} '{}'", f.name),
+                    format!("{kind} field '{}'", f.name),
                     format!("{} values, {} components", f.values.len(), f.components),
-                    format!("components >= 1 and components x {n} values"),
+                    format!("components >= 1 and components x {n} values ({n} {kind}s)"),
                 ));
             }
         }
@@ -713,6 +694,8 @@ mod tests {
         .unwrap_err()
         .to_string();
         assert!(err.contains("bad.vtu") && err.contains("velocity"), "{err}");
+        assert!(err.contains("5 values, 3 components"), "{err}");
+        assert!(err.contains("components x 12 values (12 points)"), "{err}");
         assert!(!path.exists());
         let mut bad_cells = cells.clone();
         bad_cells[1][3] = 99;

@@ -136,7 +136,13 @@ def tension_weight(sig: np.ndarray) -> np.ndarray:
     return np.where(den > 0.0, np.maximum(s, 0.0).sum(axis=1) / np.where(den > 0.0, den, 1.0), 0.0)
 
 
-def effective_stress(sig: np.ndarray, dt: np.ndarray, dc: np.ndarray, s0: float) -> np.ndarray:
-    """σ̄ = σ/(1 − D) with D of eq. (24) (stiffness recovery s from σ's direction)."""
+def stiffness_left(sig: np.ndarray, dt: np.ndarray, dc: np.ndarray, s0: float) -> np.ndarray:
+    """1 − D = (1 − d_c)(1 − s d_t) of eq. (24), s = s₀ + (1 − s₀) r(σ) from σ's direction."""
     s = s0 + (1.0 - s0) * tension_weight(sig)
-    return sig / ((1.0 - dc) * (1.0 - s * dt))[:, None]
+    return (1.0 - dc) * (1.0 - s * dt)
+
+
+def effective_stress(sig: np.ndarray, dt: np.ndarray, dc: np.ndarray, s0: float) -> np.ndarray:
+    """σ̄ = σ/(1 − D) with D of eq. (24) (stiffness recovery s from σ's direction); only for
+    1 − D > 0 (`stiffness_left`): at D = 1 σ = 0 and σ̄ is not determined by it."""
+    return sig / stiffness_left(sig, dt, dc, s0)[:, None]

@@ -52,7 +52,9 @@ The checks:
   solver's to round-off of the interpolation, measured 5e-15 on the CI run); and every bar whose head
   (at the excavation face) moved into the cavern relative to its deep end by more than
   1e-9 of its length, δ = t·(u_deep − u_head) > 1e-9 L, has a positive length-weighted mean
-  force (its mean is EA δ/L as long as no segment yields; for a reinforcement mat's bars,
+  force (its mean is EA δ/L as long as no segment yields: segments that have yielded —
+  non-zero `plastic_strain` in anchors.pvd — and the bars holding them are not judged
+  from then on, and counted; for a reinforcement mat's bars,
   parallel to the surface, δ is simply the bar's elongation, the same statement);
 - the concrete holds together: on every whole-mesh frame, every node of the concrete
   (the regions of material `concrete`) has moved since the first frame by at most 0.1 m
@@ -329,6 +331,7 @@ def damage_checks(frames: list[tuple[float, Path]], case: dict[str, Any], steps:
     first_bad = ""
     worst = {"undamaged": (-math.inf, ""), "damaged": (-math.inf, "")}
     counted = {"undamaged": 0, "damaged": 0}
+    lost = [0]
     for t, path in frames:
         f = read_vtu(path, fields)
         if mesh is None:
@@ -359,8 +362,16 @@ def damage_checks(frames: list[tuple[float, Path]], case: dict[str, Any], steps:
             undamaged = (kt_[sel] == 0.0) & (kc_[sel] == 0.0)
             ct = kt * m.ft0 * (1.0 + m.at * dt_[sel])
             cc = kc * m.fc0 * (1.0 + m.ac * dc_[sel])
-            eff = lf.effective_stress(f["stress"][sel], dt_[sel], dc_[sel], m.s0) - _elastic_increment(m, deps[sel])
+            # An element with no stiffness left (D = 1 in floating point: σ = 0) has no σ̄ to
+            # reconstruct: counted, not judged here ("damage in [0, 1)" fails on it).
+            left = lf.stiffness_left(f["stress"][sel], dt_[sel], dc_[sel], m.s0)
+            spent = left <= 0.0
+            lost[0] += int(np.sum(spent))
+            eff = np.zeros_like(f["stress"][sel])
+            eff[~spent] = lf.effective_stress(f["stress"][sel][~spent], dt_[sel][~spent], dc_[sel][~spent], m.s0)
+            eff -= _elastic_increment(m, deps[sel])
             rel = lf.yield_function(eff, ct, cc, m.alpha, m.gamma) / (kc * m.fc0)
+            rel[spent] = -np.inf
             # σ̄ of a damaged element is reconstructed from eq. (24), the "lee_fenves" recovery;
             # the "consistent" rule's σ(σ̄, D) is not inverted here, and an undamaged element's
             # σ̄ = σ under either rule.
@@ -370,7 +381,7 @@ def damage_checks(frames: list[tuple[float, Path]], case: dict[str, Any], steps:
                     raise CheckError(f"{mesh.where}: region '{mesh.regions[int(r)]['name']}' (one-point) uses "
                                      f"recovery = {m.recovery!r}: the damaged-element check inverts eq. (24) "
                                      "('lee_fenves') only")
-                damaged = ~undamaged
+                damaged = ~undamaged & ~spent
             for kind, mask in (("undamaged", undamaged), ("damaged", damaged)):
                 if mask is None or not np.any(mask):
                     continue
@@ -390,8 +401,9 @@ def damage_checks(frames: list[tuple[float, Path]], case: dict[str, Any], steps:
     ):
         value, where = worst[kind]
         n = counted[kind]
+        spent = f"; {lost[0]} element-frames with no stiffness left (D = 1) not judged" if kind == "damaged" and lost[0] else ""
         out.append(check(name, value if n else None, YIELD_TOLERANCE, (not n) or value <= YIELD_TOLERANCE,
-                         f"{what}; {n} element-frames" + (f", worst {where}" if n else ": none")))
+                         f"{what}; {n} element-frames" + (f", worst {where}" if n else ": none") + spent))
     return out
 
 
@@ -445,22 +457,28 @@ def anchor_checks(run: Path, frames: list[tuple[float, Path]], case: dict[str, A
     stiffness = {g.get("young", 200e9) * math.pi * g["diameter"] ** 2 / 4.0 for g in groups}
     ea = next(iter(stiffness)) if len(stiffness) == 1 else None
     deviation = 0.0
-    sign_bad = inward = inward_bad = 0
+    sign_bad = inward = inward_bad = not_judged = bars_not_judged = 0
+    yielded = np.zeros(len(lines), dtype=bool)
     first_bad = ""
     for t, path in bars:
         full = by_time.get(round(t, 9))
         if full is None:
             continue
-        force = read_vtu(path, ["axial_force"])["axial_force"][:, 0]
+        seg = read_vtu(path, ["axial_force", "plastic_strain"])
+        force, plastic = seg["axial_force"][:, 0], seg["plastic_strain"][:, 0]
         if len(force) != len(lines):
             raise CheckError(f"{path}: {len(force)} segments, the first frame has {len(lines)}")
+        # Once a segment has yielded, N = EA(ε − εᵖ) and neither statement holds: a yielded
+        # segment is not judged for its sign, a bar with one is not judged for its mean.
+        yielded |= plastic != 0.0
         f = read_vtu(full, ["displacement", "velocity"])
         u = f["displacement"] - steps.h(t) * f["velocity"] - u0
         ue = u[conn[host]]
         du = np.einsum("sa,sai->si", shape[1], ue) - np.einsum("sa,sai->si", shape[0], ue)
         elong = np.einsum("si,si->s", axis, du)
         strain = elong / length
-        judged = np.abs(strain) > ANCHOR_STRAIN_FLOOR
+        judged = (np.abs(strain) > ANCHOR_STRAIN_FLOOR) & ~yielded
+        not_judged += int(np.sum(yielded))
         wrong = judged & (np.sign(force) != np.sign(strain))
         if np.any(wrong) and not first_bad:
             k = int(np.argmax(wrong))
@@ -471,7 +489,9 @@ def anchor_checks(run: Path, frames: list[tuple[float, Path]], case: dict[str, A
         delta = np.bincount(bar, elong, nbars)
         total = np.bincount(bar, length, nbars)
         mean = np.bincount(bar, force * length, nbars) / np.where(total > 0, total, 1.0)
-        moved_in = delta > ANCHOR_STRAIN_FLOOR * total
+        bar_yielded = np.bincount(bar, yielded.astype(float), nbars) > 0
+        bars_not_judged += int(np.sum(bar_yielded))
+        moved_in = (delta > ANCHOR_STRAIN_FLOOR * total) & ~bar_yielded
         inward += int(np.sum(moved_in))
         inward_bad += int(np.sum(moved_in & (mean <= 0.0)))
     matched = sum(1 for t, _ in bars if round(t, 9) in by_time)
@@ -481,10 +501,12 @@ def anchor_checks(run: Path, frames: list[tuple[float, Path]], case: dict[str, A
         check("anchor forces follow the rock's elongation", float(sign_bad), 0.0, sign_bad == 0,
               f"segment-frames whose axial force has the other sign than the elongation of the host rock "
               f"since installation (|ε| > {ANCHOR_STRAIN_FLOOR:g}), {len(lines)} segments × {matched} frames{first_bad}"
-              + (f"; largest |N − EA ε| / largest |N| of a frame: {deviation:.1e}" if ea is not None else "")),
+              + (f"; largest |N − EA ε| / largest |N| of a frame: {deviation:.1e}" if ea is not None else "")
+              + f"; {not_judged} segment-frames after their segment yielded not judged"),
         check("anchors in tension where the rock moves inward", float(inward_bad), 0.0, inward_bad == 0,
               f"bar-frames whose head moved into the cavern relative to the deep end (δ > {ANCHOR_STRAIN_FLOOR:g} L) "
-              f"and whose mean axial force is not tensile, of {inward} such bar-frames ({nbars} bars)"),
+              f"and whose mean axial force is not tensile, of {inward} such bar-frames ({nbars} bars); "
+              f"{bars_not_judged} bar-frames of bars with a yielded segment not judged"),
     ]
 
 

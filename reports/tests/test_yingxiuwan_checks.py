@@ -107,13 +107,14 @@ def uniaxial(s: float) -> list[float]:
 def make_run(tmp: Path, *, gap: float = 0.0, dt_drop: float = 0.0, dv_drop: float = 0.0,
              anchor: float = 0.5, area_drift: float = 0.0, compressed: bool = False,
              no_flow: bool = False, undamaged_stress: float = 0.5, damaged_stress: float = 0.9,
-             bolt_sign: float = 1.0, full_pvd: bool = False, fall: float = 0.0) -> tuple[Path, Path]:
+             bolt_sign: float = 1.0, full_pvd: bool = False, fall: float = 0.0,
+             bolt_plastic: float = 0.0) -> tuple[Path, Path]:
     """A run of two elements and one bolt over two frames (t = 0: the state at which the
     bolt is installed; t = 1 s). Element 0 (rock, one point) cracks in uniaxial tension,
     its stress at `damaged_stress` × f_t0 (effective), its plastic strain growing unless
     `no_flow`; element 1 (lining, full integration) stays undamaged in uniaxial tension,
     0.5 f_t0 at t = 0 and `undamaged_stress` × f_t0 at t = 1 s. The rock stretches by STRETCH along the bolt, whose force
-    is `bolt_sign` × EA STRETCH. The lining's far face (x = 2) moves down by `fall` at t = 1 s."""
+    is `bolt_sign` × EA STRETCH, its plastic strain `bolt_plastic` at t = 1 s. The lining's far face (x = 2) moves down by `fall` at t = 1 s."""
     run = tmp / "run"
     run.mkdir()
     case = tmp / "case.toml"
@@ -140,7 +141,8 @@ def make_run(tmp: Path, *, gap: float = 0.0, dt_drop: float = 0.0, dv_drop: floa
                   {"Points": POINTS, "connectivity": CONN.reshape(-1), "offsets": np.array([8, 16])}, compressed)
         frames.append(f'<DataSet timestep="{t}" file="f{k}.vtu"/>')
         force = np.full(2, bolt_sign * EA * STRETCH * k)
-        write_vtu(run / f"a{k}.vtu", {}, {"axial_force": force, "bar": np.zeros(2)},
+        write_vtu(run / f"a{k}.vtu", {}, {"axial_force": force, "plastic_strain": np.full(2, bolt_plastic * k),
+                                          "bar": np.zeros(2)},
                   {"Points": BOLT, "connectivity": np.array([0, 1, 2, 3]), "offsets": np.array([2, 4])}, compressed)
         bolts.append(f'<DataSet timestep="{t}" file="a{k}.vtu"/>')
     collection = f'<VTKFile type="Collection"><Collection>{"".join(frames)}</Collection></VTKFile>'
@@ -302,3 +304,20 @@ def test_a_mat_above_its_yield_force_fails(tmp_path, share, fails):
     hist.write_text("\n".join([lines[0] + ",anchor_m_max_force", lines[1] + ",0.0", lines[2] + f",{force}"]) + "\n",
                     encoding="utf-8")
     assert failed(run, case) == ({"anchors within yield"} if fails else set())
+
+
+def test_a_yielded_bolt_is_not_judged_for_its_sign():
+    """Once a segment has yielded, N = EA(ε − εᵖ) may have the other sign than ε: a bolt in
+    compression where the rock moved inward fails while elastic, and is counted as not
+    judged once its plastic strain is non-zero."""
+    import tempfile
+    with tempfile.TemporaryDirectory() as d:
+        run, case = make_run(Path(d), bolt_sign=-1.0)
+        assert {"anchor forces follow the rock's elongation", "anchors in tension where the rock moves inward"} <= failed(run, case)
+    with tempfile.TemporaryDirectory() as d:
+        run, case = make_run(Path(d), bolt_sign=-1.0, bolt_plastic=2e-5)
+        checks = {c["name"]: c for c in yc.run_checks(run, case)}
+        assert checks["anchor forces follow the rock's elongation"]["passed"]
+        assert checks["anchors in tension where the rock moves inward"]["passed"]
+        assert "2 segment-frames after their segment yielded not judged" in checks["anchor forces follow the rock's elongation"]["what"]
+        assert "1 bar-frames of bars with a yielded segment not judged" in checks["anchors in tension where the rock moves inward"]["what"]

@@ -242,6 +242,11 @@ impl CompactFrames {
                         values: &lines.force,
                     },
                     VtuField {
+                        name: "plastic_strain",
+                        components: 1,
+                        values: &lines.plastic_strain,
+                    },
+                    VtuField {
                         name: "bar",
                         components: 1,
                         values: &lines.bar,

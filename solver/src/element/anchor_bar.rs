@@ -193,11 +193,14 @@ pub struct BarNames {
     pub group: String,
 }
 
-/// Segments for VTU line output: end points, point pairs, axial force and bar per line.
+/// Segments for VTU line output: end points, point pairs, axial force, plastic strain and
+/// bar per line.
 pub struct BarLines {
     pub points: Vec<[f64; 3]>,
     pub lines: Vec<[u32; 2]>,
     pub force: Vec<f64>,
+    /// Committed plastic strain εᵖ of every line (0 until its segment yields).
+    pub plastic_strain: Vec<f64>,
     pub bar: Vec<f64>,
 }
 
@@ -632,8 +635,8 @@ impl AnchorBars {
         }
     }
 
-    /// Segment end points (reference) and axial forces, for VTU line output: (points,
-    /// lines as point pairs, force per line, bar per line).
+    /// Segment end points (reference), axial forces and plastic strains, for VTU line
+    /// output: (points, lines as point pairs, force, plastic strain and bar per line).
     pub fn lines(&self) -> BarLines {
         let mut pts = Vec::new();
         let mut lines = Vec::new();
@@ -656,6 +659,7 @@ impl AnchorBars {
             points: pts,
             lines,
             force: self.force.clone(),
+            plastic_strain: self.plastic.clone(),
             bar: bars,
         }
     }

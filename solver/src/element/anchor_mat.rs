@@ -176,6 +176,31 @@ mod tests {
             "{end} N at the far end, expected {}",
             8.0 * ea * eps
         );
+        // Beyond yield (ε = 3e-3 > f_y/E = 2e-3): the bars along x carry f_y A with the
+        // excess as plastic strain, which the VTU lines report per segment; those across
+        // stay at zero.
+        let u_far: Vec<[f64; 3]> = mesh
+            .coords
+            .iter()
+            .map(|x| [3e-3 * x[0], 0.0, 0.0])
+            .collect();
+        anchors.add_internal_forces(&mesh, &u_far, &mut vec![[0.0; 3]; mesh.coords.len()]);
+        anchors.commit(0.0, 1e-4, 0.0);
+        let lines = anchors.lines();
+        assert_eq!(lines.plastic_strain.len(), lines.lines.len());
+        for (k, [a, b]) in lines.lines.iter().enumerate() {
+            let along_x =
+                (lines.points[*a as usize][1] - lines.points[*b as usize][1]).abs() < 1e-12;
+            let (ep, n) = (lines.plastic_strain[k], lines.force[k]);
+            if along_x {
+                assert!(
+                    (ep - 1e-3).abs() < 1e-12 && (n - ea * 2e-3).abs() < 1e-6 * ea * 2e-3,
+                    "line {k}: εᵖ {ep}, N {n}"
+                );
+            } else {
+                assert!(ep == 0.0 && n.abs() < 1e-6, "line {k}: εᵖ {ep}, N {n}");
+            }
+        }
         for d in 0..3 {
             let total: f64 = f.iter().map(|v| v[d]).sum();
             assert!(

@@ -286,8 +286,9 @@ anchors = true
 # crane_beam_corbels, junctions (and pedestals, turbine_layer_columns,
 # turbine_layer_walls, mass_concrete, tunnel_lining). Face sets: excavation (the rock
 # surface), bolts_arch, bolts_upper_sidewalls (its parts behind the arch and upper
-# sidewall lining), lining_face_arch, lining_face_upper_sidewalls, lining_surface,
-# inner_surface, xmin … zmax. ------------------------------------------------------------
+# sidewall lining), lining_face_arch, lining_face_upper_sidewalls, crane_beam_face (the
+# corbels' vertical faces towards the cavern), lining_surface, inner_surface, xmin … zmax.
+# ----------------------------------------------------------------------------------------
 [mesh]
 gmsh = "{mesh}"
 
@@ -455,6 +456,43 @@ spacing = 1.5
 diameter = 0.025
 young = 200e9
 yield_stress = 335e6
+
+# Reinforcement of the lining (paper §3: steel bars embedded in the concrete, their
+# stiffness superposed on its elements; docs/anchors.md "Mats"): two-way mats of φ25 HRB335
+# bars at 0.2 m under both faces of the arch, the sidewall lining, the corbels and the
+# tunnel linings — the free faces (lining_surface) and those on the rock (lining-rock) —
+# with 0.06 m from the face to the bars' axes (50 mm clear cover). -------------------------
+[[anchors.mats]]
+name = "lining_mat_inner"
+face_set = "lining_surface"
+cover = 0.06
+spacing = 0.2
+diameter = 0.025
+young = 200e9
+yield_stress = 335e6
+
+[[anchors.mats]]
+name = "lining_mat_outer"
+face_set = "lining-rock"
+cover = 0.06
+spacing = 0.2
+diameter = 0.025
+young = 200e9
+yield_stress = 335e6
+
+# Rock-anchored crane beams (typical Chinese practice for powerhouse caverns of the period,
+# docs/yingxiuwan.md): the beam and its corbel tied to the rock wall by fully grouted φ36
+# HRB400 anchors at 0.75 m × 0.75 m, 12 m long from the beam's face through the corbel
+# (2.5 m), the lining (1 m) and 8.5 m into the rock. Without them the plain-concrete
+# corbel hangs on the lining alone and falls once its root cracks through. --------------
+[[anchors.patterns]]
+name = "anchors_crane_beam"
+face_set = "crane_beam_face"
+length = 12.0
+spacing = 0.75
+diameter = 0.036
+young = 200e9
+yield_stress = 400e6
 "#;
     if m.upper_anchorage {
         s += r#"
@@ -628,6 +666,7 @@ mod tests {
             "bolts_upper_sidewalls",
             "lining_face_arch",
             "lining_face_upper_sidewalls",
+            "crane_beam_face",
             "lining-rock",
             "rock-lining",
             "inner-rock",
@@ -702,6 +741,40 @@ mod tests {
                 "arch element {e}"
             );
         }
+        // The crane beams' faces (the start of their anchors): corbel elements, every node
+        // on the plane |x| = half width − lining − corbel depth within the corbel's height,
+        // both walls along the whole length (2 × height × length of face area).
+        let corbels = &m.element_sets["crane_beam_corbels"];
+        let beam_face = |x: f64| geo.half_width() - geo.lining - geo.corbel_depth - x.abs();
+        let mut area = 0.0;
+        for f in &m.face_sets["crane_beam_face"] {
+            assert!(corbels.binary_search(&f.element).is_ok(), "{f:?}");
+            let p: Vec<[f64; 3]> = m
+                .face_nodes(*f)
+                .iter()
+                .map(|&n| std::array::from_fn(|d| m.coords[n as usize][d] - geo.origin[d]))
+                .collect();
+            for q in &p {
+                assert!(beam_face(q[0]).abs() < 1e-9, "{f:?} node at {q:?}");
+                assert!(
+                    q[2] > geo.corbel_bottom - 1e-9
+                        && q[2] < geo.corbel_bottom + geo.corbel_height + 1e-9,
+                    "{f:?} node at {q:?}"
+                );
+            }
+            let (dy, dz) = (
+                p.iter().map(|q| q[1]).fold(f64::NEG_INFINITY, f64::max)
+                    - p.iter().map(|q| q[1]).fold(f64::INFINITY, f64::min),
+                p.iter().map(|q| q[2]).fold(f64::NEG_INFINITY, f64::max)
+                    - p.iter().map(|q| q[2]).fold(f64::INFINITY, f64::min),
+            );
+            area += dy * dz;
+        }
+        let expected = 2.0 * geo.corbel_height * geo.length;
+        assert!(
+            (area - expected).abs() < 1e-6 * expected,
+            "{area} m² of crane-beam face, expected {expected}"
+        );
         // No concrete above the excavated crown.
         for &e in &all {
             let c = centre(e);

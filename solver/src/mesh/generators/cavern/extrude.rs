@@ -349,6 +349,11 @@ pub fn build_mesh(
                         Part::WallLining => {
                             add("lining_face_upper_sidewalls", concrete_of[ci], dir)
                         }
+                        // The crane beam's vertical face towards the cavern (x faces: the
+                        // corbels run along y), from which the beam's rock anchors start.
+                        Part::CraneCorbel if dir == 3 || dir == 5 => {
+                            add("crane_beam_face", concrete_of[ci], dir)
+                        }
                         _ => {}
                     }
                 }

@@ -45,6 +45,21 @@ fn check_steel(steel: &SteelSpec, field: &str, label: &str) -> Result<()> {
     Ok(())
 }
 
+/// Every named length (m) finite, > 0 and < 10 km, or an error naming the field.
+fn positive_lengths(lengths: &[(&str, f64)], field: &str, label: &str) -> Result<()> {
+    for &(name, v) in lengths {
+        if !(v.is_finite() && v > 0.0 && v < 1e4) {
+            return Err(DcfmError::invalid(
+                label,
+                format!("{field}.{name}"),
+                v,
+                "must be > 0 (m)",
+            ));
+        }
+    }
+    Ok(())
+}
+
 /// The faces of `name`, or an error listing the mesh's face sets.
 fn face_set<'m>(mesh: &'m Mesh, name: &str, field: &str, label: &str) -> Result<&'m [Face]> {
     mesh.face_sets.get(name).map(Vec::as_slice).ok_or_else(|| {
@@ -92,16 +107,11 @@ pub(super) fn build_anchors(model: &mut Model, section: &AnchorSection, label: &
     for (i, p) in section.patterns.iter().enumerate() {
         let field = format!("anchors.patterns[{i}]");
         check_steel(&p.steel, &field, label)?;
-        for (name, v) in [("length", p.length), ("spacing", p.spacing)] {
-            if !(v.is_finite() && v > 0.0 && v < 1e4) {
-                return Err(DcfmError::invalid(
-                    label,
-                    format!("{field}.{name}"),
-                    v,
-                    "must be > 0 (m)",
-                ));
-            }
-        }
+        positive_lengths(
+            &[("length", p.length), ("spacing", p.spacing)],
+            &field,
+            label,
+        )?;
         let faces = face_set(mesh, &p.face_set, &field, label)?;
         let group = p.name.clone().unwrap_or_else(|| format!("pattern{i}"));
         for (k, (start, dir)) in pattern_points(mesh, faces, p.spacing)
@@ -122,16 +132,7 @@ pub(super) fn build_anchors(model: &mut Model, section: &AnchorSection, label: &
     for (i, m) in section.mats.iter().enumerate() {
         let field = format!("anchors.mats[{i}]");
         check_steel(&m.steel, &field, label)?;
-        for (name, v) in [("cover", m.cover), ("spacing", m.spacing)] {
-            if !(v.is_finite() && v > 0.0 && v < 1e4) {
-                return Err(DcfmError::invalid(
-                    label,
-                    format!("{field}.{name}"),
-                    v,
-                    "must be > 0 (m)",
-                ));
-            }
-        }
+        positive_lengths(&[("cover", m.cover), ("spacing", m.spacing)], &field, label)?;
         let faces = face_set(mesh, &m.face_set, &field, label)?;
         let group = m.name.clone().unwrap_or_else(|| format!("mat{i}"));
         let lines = mat_bars(mesh, faces, m.cover, m.spacing).map_err(|msg| {

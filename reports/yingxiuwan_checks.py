@@ -227,39 +227,45 @@ def run_checks(run: Path, case_file: Path) -> list[dict[str, Any]]:
                         f"largest force change left in the {count} of {summary.get('steps')} steps accepted without settling to 1e-10"))
 
     steps = FrameSteps(summary)
-    checks += damage_checks(frames, case, steps)
-    checks.append(structure_check(frames, case))
+    drift = ConcreteDrift(case)
+    checks += damage_checks(frames, case, steps, drift)
+    checks.append(drift.check())
     if anchors:
         checks += anchor_checks(run, frames, case, steps)
     return checks
 
 
-def structure_check(frames: list[tuple[float, Path]], case: dict[str, Any]) -> dict[str, Any]:
+class ConcreteDrift:
     """The concrete holds together: the largest displacement of a concrete node since the
-    first frame, less the concrete's median displacement since then, over every frame."""
-    concrete = [k for k, r in enumerate(case.get("regions", [])) if r.get("material") == "concrete"]
-    if not concrete:
-        raise CheckError("the case has no region of material 'concrete' to check for holding together")
-    worst, when, where = 0.0, frames[0][0], [math.nan] * 3
-    start: np.ndarray | None = None
-    for t, path in frames:
-        f = read_vtu(path, ["Points", "connectivity", "region", "displacement"])
+    first frame, less the concrete's median displacement since then, over every frame
+    (fed the whole-mesh frames that `damage_checks` reads, so they are read once)."""
+
+    def __init__(self, case: dict[str, Any]):
+        self.concrete = [k for k, r in enumerate(case.get("regions", [])) if r.get("material") == "concrete"]
+        if not self.concrete:
+            raise CheckError("the case has no region of material 'concrete' to check for holding together")
+        self.worst, self.when, self.where = 0.0, math.nan, [math.nan] * 3
+        self.start: np.ndarray | None = None
+
+    def observe(self, t: float, path: Path, f: dict[str, np.ndarray]) -> None:
         conn = f["connectivity"].reshape(-1, 8).astype(np.int64)
-        nodes = np.unique(conn[np.isin(f["region"][:, 0].astype(np.int64), concrete)])
+        nodes = np.unique(conn[np.isin(f["region"][:, 0].astype(np.int64), self.concrete)])
         u = f["displacement"][nodes]
-        if start is None:
-            start = u
-        elif start.shape != u.shape:
-            raise CheckError(f"{path}: {len(nodes)} concrete nodes, the first frame had {len(start)}")
-        moved = u - start
+        if self.start is None:
+            self.start, self.when = u, t
+        elif self.start.shape != u.shape:
+            raise CheckError(f"{path}: {len(nodes)} concrete nodes, the first frame had {len(self.start)}")
+        moved = u - self.start
         drift = np.linalg.norm(moved - np.median(moved, axis=0), axis=1)
         k = int(np.argmax(drift))
-        if drift[k] > worst:
-            worst, when, where = float(drift[k]), t, f["Points"][nodes[k]].tolist()
-    at = ", ".join(f"{v:.1f}" for v in where)
-    return check("concrete holds together", worst, STRUCTURE_DRIFT_M, worst <= STRUCTURE_DRIFT_M,
-                 f"largest displacement (m) of a concrete node since the first frame less the concrete's median, "
-                 f"at t = {when:g} s, node at ({at}); limit a tenth of the lining's thickness")
+        if drift[k] > self.worst:
+            self.worst, self.when, self.where = float(drift[k]), t, f["Points"][nodes[k]].tolist()
+
+    def check(self) -> dict[str, Any]:
+        at = ", ".join(f"{v:.1f}" for v in self.where)
+        return check("concrete holds together", self.worst, STRUCTURE_DRIFT_M, self.worst <= STRUCTURE_DRIFT_M,
+                     f"largest displacement (m) of a concrete node since the first frame less the concrete's median, "
+                     f"at t = {self.when:g} s, node at ({at}); limit a tenth of the lining's thickness")
 
 
 class FrameSteps:
@@ -321,8 +327,10 @@ def _elastic_increment(m: lf.PlasticDamage, de: np.ndarray) -> np.ndarray:
     return out
 
 
-def damage_checks(frames: list[tuple[float, Path]], case: dict[str, Any], steps: FrameSteps) -> list[dict[str, Any]]:
-    """Damage only where the stress reached the strength (module docstring)."""
+def damage_checks(frames: list[tuple[float, Path]], case: dict[str, Any], steps: FrameSteps,
+                  drift: ConcreteDrift) -> list[dict[str, Any]]:
+    """Damage only where the stress reached the strength (module docstring); every frame read
+    is also passed to `drift`."""
     fields = MESH_FIELDS + ["displacement", "velocity", "stress", "damage_tension", "damage_compression",
                             "kappa_tension", "kappa_compression", "plastic_strain"]
     mesh: Mesh | None = None
@@ -331,9 +339,10 @@ def damage_checks(frames: list[tuple[float, Path]], case: dict[str, Any], steps:
     first_bad = ""
     worst = {"undamaged": (-math.inf, ""), "damaged": (-math.inf, "")}
     counted = {"undamaged": 0, "damaged": 0}
-    lost = [0]
+    lost = 0
     for t, path in frames:
         f = read_vtu(path, fields)
+        drift.observe(t, path, f)
         if mesh is None:
             mesh = Mesh(f, case, str(path))
         region = f["region"][:, 0].astype(int)
@@ -366,7 +375,7 @@ def damage_checks(frames: list[tuple[float, Path]], case: dict[str, Any], steps:
             # reconstruct: counted, not judged here ("damage in [0, 1)" fails on it).
             left = lf.stiffness_left(f["stress"][sel], dt_[sel], dc_[sel], m.s0)
             spent = left <= 0.0
-            lost[0] += int(np.sum(spent))
+            lost += int(np.sum(spent))
             eff = np.zeros_like(f["stress"][sel])
             eff[~spent] = lf.effective_stress(f["stress"][sel][~spent], dt_[sel][~spent], dc_[sel][~spent], m.s0)
             eff -= _elastic_increment(m, deps[sel])
@@ -401,7 +410,7 @@ def damage_checks(frames: list[tuple[float, Path]], case: dict[str, Any], steps:
     ):
         value, where = worst[kind]
         n = counted[kind]
-        spent = f"; {lost[0]} element-frames with no stiffness left (D = 1) not judged" if kind == "damaged" and lost[0] else ""
+        spent = f"; {lost} element-frames with no stiffness left (D = 1) not judged" if kind == "damaged" and lost else ""
         out.append(check(name, value if n else None, YIELD_TOLERANCE, (not n) or value <= YIELD_TOLERANCE,
                          f"{what}; {n} element-frames" + (f", worst {where}" if n else ": none") + spent))
     return out

@@ -493,6 +493,28 @@ spacing = 0.75
 diameter = 0.036
 young = 200e9
 yield_stress = 400e6
+
+# The inner structure (floors, pedestals, walls, columns, mass concrete) is reinforced
+# concrete too: the same mats under its free faces (inner_surface) and its faces on the
+# rock (inner-rock). Without them the plain-concrete generator floor's mid-span falls from
+# ≈ 6.1 s of the Wolong-like input (docs/yingxiuwan.md, "Status of the case"). ---------
+[[anchors.mats]]
+name = "inner_mat_free"
+face_set = "inner_surface"
+cover = 0.06
+spacing = 0.2
+diameter = 0.025
+young = 200e9
+yield_stress = 335e6
+
+[[anchors.mats]]
+name = "inner_mat_rock"
+face_set = "inner-rock"
+cover = 0.06
+spacing = 0.2
+diameter = 0.025
+young = 200e9
+yield_stress = 335e6
 "#;
     if m.upper_anchorage {
         s += r#"

@@ -123,6 +123,49 @@ fn errors_name_file_field_value_and_expectation() {
     );
 }
 
+/// A pattern with `depth`: every bar runs along the inward normal of the 2 m block's top
+/// (z = 2) from `depth` to `depth + length` below it (a tie between a wall's two mats);
+/// without it from the face. A negative or non-finite depth is named.
+#[test]
+fn pattern_bars_start_at_their_depth_below_the_face() {
+    let pattern = |depth: &str| {
+        format!(
+            "{SMALL}\n[[anchors.patterns]]\nname = \"t\"\nface_set = \"b.zmax\"\nlength = 0.5\n\
+             spacing = 0.5\ndiameter = 0.012\nyield_stress = 300e6\n{depth}"
+        )
+    };
+    for (line, top, bottom) in [("depth = 0.3\n", 1.7, 1.2), ("", 2.0, 1.5)] {
+        let case = parse_case(&pattern(line), "case.toml", Path::new(".")).unwrap();
+        let lines = case.model.anchors.as_ref().unwrap().lines();
+        assert!(!lines.lines.is_empty());
+        for [a, b] in &lines.lines {
+            let (za, zb) = (lines.points[*a as usize][2], lines.points[*b as usize][2]);
+            let (hi, lo) = (za.max(zb), za.min(zb));
+            assert!(
+                hi <= top + 1e-12 && lo >= bottom - 1e-12,
+                "{line:?}: {za} → {zb}"
+            );
+            assert!((lines.points[*a as usize][0] - lines.points[*b as usize][0]).abs() < 1e-12);
+        }
+        let z = |k: usize| lines.points[k][2];
+        let zs: Vec<f64> = (0..lines.points.len()).map(z).collect();
+        let (max, min) = zs
+            .iter()
+            .fold((f64::MIN, f64::MAX), |(m, n), &v| (m.max(v), n.min(v)));
+        assert!(
+            (max - top).abs() < 1e-12 && (min - bottom).abs() < 1e-12,
+            "{line:?}: {min} … {max}"
+        );
+    }
+    for bad in ["-0.1", "nan"] {
+        let e = err(&pattern(&format!("depth = {bad}\n")));
+        assert!(
+            e.contains("case.toml: anchors.patterns[0].depth") && e.contains("a depth ≥ 0 (m)"),
+            "{e}"
+        );
+    }
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(300))]
 

@@ -87,6 +87,11 @@ pub struct PatternSpec {
     pub length: f64,
     /// One bar per `spacing`² of surface (m).
     pub spacing: f64,
+    /// Depth of each bar's start below its face along the inward normal (m): 0 (the
+    /// default) starts at the face, as a bolt does; a tie between the two reinforcement
+    /// mats of a wall starts at the inner mat's cover.
+    #[serde(default)]
+    pub depth: f64,
     #[serde(flatten)]
     pub steel: SteelSpec,
 }

@@ -112,12 +112,21 @@ pub(super) fn build_anchors(model: &mut Model, section: &AnchorSection, label: &
             &field,
             label,
         )?;
+        if !(p.depth.is_finite() && p.depth >= 0.0) {
+            return Err(DcfmError::invalid(
+                label,
+                format!("{field}.depth"),
+                p.depth,
+                "a depth ≥ 0 (m) of the bars' start below the face",
+            ));
+        }
         let faces = face_set(mesh, &p.face_set, &field, label)?;
         let group = p.name.clone().unwrap_or_else(|| format!("pattern{i}"));
-        for (k, (start, dir)) in pattern_points(mesh, faces, p.spacing)
+        for (k, (face_point, dir)) in pattern_points(mesh, faces, p.spacing)
             .into_iter()
             .enumerate()
         {
+            let start: [f64; 3] = std::array::from_fn(|d| face_point[d] + p.depth * dir[d]);
             let end: [f64; 3] = std::array::from_fn(|d| start[d] + p.length * dir[d]);
             let names = BarNames {
                 name: format!("{group}.{k}"),

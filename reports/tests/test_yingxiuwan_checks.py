@@ -321,3 +321,21 @@ def test_a_yielded_bolt_is_not_judged_for_its_sign():
         assert checks["anchors in tension where the rock moves inward"]["passed"]
         assert "2 segment-frames after their segment yielded not judged" in checks["anchor forces follow the rock's elongation"]["what"]
         assert "1 bar-frames of bars with a yielded segment not judged" in checks["anchors in tension where the rock moves inward"]["what"]
+
+
+@pytest.mark.parametrize("bolt_sign, wrong", [(1.0, 0), (-1.0, 2)])
+def test_sparser_anchor_frames_pair_with_whole_mesh_frames_by_time(tmp_path, bolt_sign, wrong):
+    """`anchors_every` (docs/outputs.md) makes anchors.pvd sparser than the whole-mesh
+    frames: here full.pvd has a frame at t = 0.5 s (the rock at rest, a copy of t = 0)
+    that anchors.pvd lacks. The bolt frame of t = 1 s must be judged against the rock of
+    t = 1 s (its 2 segments wrong when the force has the other sign), not against the
+    second whole-mesh frame (at rest: nothing would be judged)."""
+    run, case = make_run(tmp_path, full_pvd=True, bolt_sign=bolt_sign)
+    (run / "full.pvd").write_text(
+        '<VTKFile type="Collection"><Collection><DataSet timestep="0" file="f0.vtu"/>'
+        '<DataSet timestep="0.5" file="f0.vtu"/><DataSet timestep="1" file="f1.vtu"/>'
+        '</Collection></VTKFile>', encoding="utf-8")
+    checks = {c["name"]: c for c in yc.run_checks(run, case)}
+    sign = checks["anchor forces follow the rock's elongation"]
+    assert sign["value"] == wrong, sign
+    assert "× 2 frames" in sign["what"], sign

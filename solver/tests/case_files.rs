@@ -166,6 +166,39 @@ fn pattern_bars_start_at_their_depth_below_the_face() {
     }
 }
 
+/// `[output.frames]` intervals are written with the compact frames, every `vtu_every`
+/// (5) steps: an interval that is not a multiple of it is rejected, naming the field, the
+/// value and the expected multiple; a multiple and 0 load.
+#[test]
+fn frame_intervals_must_be_multiples_of_vtu_every() {
+    let frames = |extra: &str| format!("{SMALL}\n[output.frames]\nregions = [\"b\"]\n{extra}\n");
+    for good in [
+        "anchors_every = 10",
+        "anchors_every = 0",
+        "full_every = 15\nanchors_every = 5",
+    ] {
+        parse_case(&frames(good), "case.toml", Path::new("."))
+            .unwrap_or_else(|e| panic!("{good}: {e}"));
+    }
+    let e = err(&frames("anchors_every = 7"));
+    assert!(
+        e.contains("case.toml: output.frames.anchors_every = 7")
+            && e.contains("a multiple of output.vtu_every = 5"),
+        "{e}"
+    );
+    let e = err(&frames("full_every = 12"));
+    assert!(
+        e.contains("case.toml: output.frames.full_every = 12")
+            && e.contains("a multiple of output.vtu_every = 5"),
+        "{e}"
+    );
+    let e = err(&frames("anchors_every = 10").replace("vtu_every = 5", "vtu_every = 0"));
+    assert!(
+        e.contains("output.frames.anchors_every = 10") && e.contains("output.vtu_every = 0"),
+        "{e}"
+    );
+}
+
 proptest! {
     #![proptest_config(ProptestConfig::with_cases(300))]
 

@@ -4,7 +4,8 @@
 //! velocity, contact fields, stress and damage in Float32, zlib-compressed
 //! ([`crate::output::write_vtu_compressed`]), and the anchor bars with their axial forces.
 //! The frames form the run's time series (`case.pvd`); the anchor frames their own
-//! (`anchors.pvd`). The run driver writes the whole mesh less often (`full.pvd`).
+//! (`anchors.pvd`), every `anchors_every` steps (a multiple of `vtu_every`; 0: with every
+//! frame). The run driver writes the whole mesh less often (`full.pvd`).
 
 use std::path::Path;
 
@@ -24,17 +25,23 @@ pub struct CompactFrames {
     full: PvdCollection,
     /// Steps between two frames of the whole mesh (0: first and last only).
     pub full_every: u64,
+    /// Steps between two frames of the anchor bars (`anchors_every`, or `vtu_every` when
+    /// that is 0; 0: first and last only).
+    pub anchors_every: u64,
 }
 
 impl CompactFrames {
     /// The frames of `section` for the model of `sim` (its active elements in the listed
-    /// regions or sets). `resumed_at`: the time of the checkpoint a resumed run starts
-    /// from (later frames of the collections are dropped).
+    /// regions or sets), with the compact frames every `vtu_every` steps. `resumed`: a
+    /// resumed run, whose `sim` is the state of the checkpoint it starts from — the
+    /// collections keep only the frames this run's schedule writes up to that step (not
+    /// the last frame of the interrupted run, nor later ones), as an uninterrupted run.
     pub fn new(
         section: &FramesSection,
         sim: &Simulation,
         out: &Path,
-        resumed_at: Option<f64>,
+        vtu_every: u64,
+        resumed: bool,
     ) -> Result<Self> {
         let mesh = &sim.model.mesh;
         let mut wanted = vec![false; mesh.n_elements()];
@@ -66,27 +73,36 @@ impl CompactFrames {
         selected.sort_unstable();
         let subset = CellSubset::new(&mesh.coords, &mesh.elements, &selected);
         let region = selected.iter().map(|&e| region_of[e as usize]).collect();
-        let open = |name: &str| -> Result<PvdCollection> {
+        let anchors_every = if section.anchors_every > 0 {
+            section.anchors_every
+        } else {
+            vtu_every
+        };
+        let (restart, time) = (sim.step, sim.time);
+        let open = |name: &str, every: u64| -> Result<PvdCollection> {
             let path = out.join(name);
-            match resumed_at {
-                Some(t) => {
-                    let mut p = PvdCollection::resume(&path)?;
-                    p.truncate_after(t)?;
-                    Ok(p)
-                }
-                None => PvdCollection::create(&path),
+            if !resumed {
+                return PvdCollection::create(&path);
             }
+            let mut p = PvdCollection::resume(&path)?;
+            p.truncate_after(time)?;
+            p.retain(|e| {
+                crate::run::frame_step(&e.file)
+                    .is_some_and(|s| s == 0 || (s <= restart && due(s, every)))
+            })?;
+            Ok(p)
         };
         let anchors = match (&sim.model.anchors, section.anchors) {
-            (Some(a), true) if !a.is_empty() => Some(open("anchors.pvd")?),
+            (Some(a), true) if !a.is_empty() => Some(open("anchors.pvd", anchors_every)?),
             _ => None,
         };
         Ok(Self {
             subset,
             region,
             anchors,
-            full: open("full.pvd")?,
+            full: open("full.pvd", section.full_every)?,
             full_every: section.full_every,
+            anchors_every,
         })
     }
 
@@ -110,11 +126,24 @@ impl CompactFrames {
 
     /// Whether the whole mesh is due at `step` (`last`: the run's last step).
     pub fn full_due(&self, step: u64, first: bool, last: bool) -> bool {
-        first || last || (self.full_every > 0 && step.is_multiple_of(self.full_every))
+        first || last || due(step, self.full_every)
     }
 
-    /// Write the frame of the current state into `out` and add it to `pvd`.
-    pub fn write(&mut self, sim: &Simulation, out: &Path, pvd: &mut PvdCollection) -> Result<()> {
+    /// Whether a frame of the anchor bars is due at `step` (`last`: the run's last step).
+    pub fn anchors_due(&self, step: u64, first: bool, last: bool) -> bool {
+        first || last || due(step, self.anchors_every)
+    }
+
+    /// Write the frame of the current state into `out` and add it to `pvd`, with the
+    /// anchor bars' frame when due (`first`, `last`: the run's first or last step).
+    pub fn write(
+        &mut self,
+        sim: &Simulation,
+        out: &Path,
+        pvd: &mut PvdCollection,
+        first: bool,
+        last: bool,
+    ) -> Result<()> {
         let model = &sim.model;
         let s = &self.subset;
         let ne = model.n_elements();
@@ -227,7 +256,10 @@ impl CompactFrames {
             }],
         )?;
         pvd.add(sim.time, &name)?;
-        if let (Some(apvd), Some(a)) = (self.anchors.as_mut(), model.anchors.as_ref()) {
+        let anchors_due = self.anchors_due(sim.step, first, last);
+        if let (Some(apvd), Some(a), true) =
+            (self.anchors.as_mut(), model.anchors.as_ref(), anchors_due)
+        {
             let lines = a.lines();
             let name = format!("anchors_{:06}.vtu", sim.step);
             write_vtu_lines(
@@ -257,4 +289,10 @@ impl CompactFrames {
         }
         Ok(())
     }
+}
+
+/// Whether a frame with an interval of `every` steps is due at `step` (0: never, only the
+/// first and last frames).
+fn due(step: u64, every: u64) -> bool {
+    every > 0 && step.is_multiple_of(every)
 }

@@ -339,7 +339,7 @@ fn write_frame(
     match frames {
         None => write_state_vtu(sim, out, pvd),
         Some(f) => {
-            f.write(sim, out, pvd)?;
+            f.write(sim, out, pvd, first, last)?;
             if f.full_due(sim.step, first, last) {
                 write_state_vtu(sim, out, f.full_collection())?;
             }
@@ -575,7 +575,7 @@ fn list_changes(changes: &[String]) -> String {
 /// Step of a VTU frame written by [`write_state_vtu`] (`mesh_000120.vtu` → 120) or, with
 /// `[output.frames]`, by [`crate::frames::CompactFrames`] (`frame_000120.vtu`,
 /// `anchors_000120.vtu`).
-fn frame_step(file: &str) -> Option<u64> {
+pub(crate) fn frame_step(file: &str) -> Option<u64> {
     let digits = ["mesh_", "frame_", "anchors_"]
         .iter()
         .find_map(|prefix| file.strip_prefix(prefix))?
@@ -766,8 +766,14 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
     }
     let mut frames = match &output.frames {
         Some(f) => Some(
-            crate::frames::CompactFrames::new(f, &sim, out, resumed_from.map(|_| sim.time))
-                .map_err(early)?,
+            crate::frames::CompactFrames::new(
+                f,
+                &sim,
+                out,
+                output.vtu_every,
+                resumed_from.is_some(),
+            )
+            .map_err(early)?,
         ),
         None => None,
     };

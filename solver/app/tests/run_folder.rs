@@ -313,3 +313,101 @@ fn a_resumed_run_with_compact_frames_lists_the_frames_of_an_uninterrupted_run() 
     assert_eq!(vtu_files(&root.join("full")), vtu_files(&root.join("part")));
     let _ = std::fs::remove_dir_all(&root);
 }
+
+/// Run `text` (the anchored block) into `out`.
+fn go_anchored(text: &str, out: &Path, resume: bool) -> RunSummary {
+    run_case(
+        parse_case(text, "anchored.toml", Path::new(".")).unwrap(),
+        &RunOptions {
+            out: out.to_path_buf(),
+            resume,
+            progress: false,
+            ..Default::default()
+        },
+    )
+    .unwrap()
+}
+
+/// Steps of the frames a collection lists (`anchors_000006.vtu` → 6) with their times.
+fn listed_steps(pvd: &Path) -> Vec<(u64, u64)> {
+    PvdCollection::load(pvd)
+        .unwrap()
+        .entries()
+        .iter()
+        .map(|e| {
+            let digits = e.file.rsplit('_').next().unwrap().trim_end_matches(".vtu");
+            (digits.parse().unwrap(), e.time.to_bits())
+        })
+        .collect()
+}
+
+/// `anchors_every = 6` with compact frames every 2 steps: anchors.pvd lists the frames at
+/// the multiples of 6, the first and the last step — each at the time of the compact frame
+/// of its step (one time series with case.pvd) — and the folder holds exactly those.
+#[test]
+fn anchors_frames_come_every_anchors_every_steps_and_at_the_first_and_last() {
+    let root = dir("anchors-every");
+    let out = root.join("out");
+    let s = go_anchored(&(compact(ANCHORED) + "anchors_every = 6\n"), &out, false);
+    let n = s.steps;
+    assert!(
+        n > 12 && !n.is_multiple_of(6),
+        "{n} steps: the test needs a last step off the 6s"
+    );
+    let case = listed_steps(&out.join("case.pvd"));
+    let anchors = listed_steps(&out.join("anchors.pvd"));
+    let expected: Vec<u64> = (0..=n).filter(|&k| k.is_multiple_of(6) || k == n).collect();
+    let got: Vec<u64> = anchors.iter().map(|a| a.0).collect();
+    assert_eq!(got, expected);
+    for a in &anchors {
+        assert!(
+            case.contains(a),
+            "anchors frame {a:?} at no compact frame's time"
+        );
+    }
+    let files: BTreeSet<String> = vtu_files(&out)
+        .into_iter()
+        .filter(|f| f.starts_with("anchors_"))
+        .collect();
+    let wanted: BTreeSet<String> = expected
+        .iter()
+        .map(|k| format!("anchors_{k:06}.vtu"))
+        .collect();
+    assert_eq!(files, wanted);
+    let _ = std::fs::remove_dir_all(&root);
+}
+
+/// Interrupted exactly at step 4 (a checkpoint and a compact frame, its last frame with an
+/// anchors frame although 4 is not a multiple of `anchors_every` = 6) and resumed:
+/// anchors.pvd and the folder are those of the uninterrupted run (the resumed collection
+/// drops the interrupted run's last frame, off the schedule).
+#[test]
+fn a_resumed_run_keeps_anchors_pvd_on_the_anchors_every_schedule() {
+    let root = dir("anchors-every-resume");
+    let text = compact(ANCHORED) + "anchors_every = 6\n";
+    let full = go_anchored(&text, &root.join("full"), false);
+    let end4 = 4.0 * full.dt;
+    go_anchored(
+        &text.replace("end = 0.002", &format!("end = {end4:?}")),
+        &root.join("part"),
+        false,
+    );
+    let steps = |out: &Path| -> Vec<u64> {
+        listed_steps(&out.join("anchors.pvd"))
+            .iter()
+            .map(|a| a.0)
+            .collect()
+    };
+    assert_eq!(steps(&root.join("part")), [0, 4]);
+    let resumed = go_anchored(&text, &root.join("part"), true);
+    assert_eq!(resumed.resumed_from_step, Some(4));
+    for name in ["case.pvd", "full.pvd", "anchors.pvd"] {
+        assert_eq!(
+            listed(&root.join("full").join(name)),
+            listed(&root.join("part").join(name)),
+            "{name}"
+        );
+    }
+    assert_eq!(vtu_files(&root.join("full")), vtu_files(&root.join("part")));
+    let _ = std::fs::remove_dir_all(&root);
+}

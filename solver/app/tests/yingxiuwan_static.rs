@@ -29,6 +29,7 @@ fn static_stage_converges_and_bonded_pairs_hold_where_interfaces_meet() {
     let frames = case.output.frames.as_ref().expect("[output.frames]");
     assert!(frames.anchors);
     assert_eq!(frames.full_every, case.output.vtu_every);
+    assert_eq!(frames.anchors_every, case.output.vtu_every);
     assert_eq!(frames.regions, ["lining", "inner"]);
     let plan = case.static_plan.unwrap();
     let tolerances: Vec<f64> = plan.steps.iter().map(|s| s.convergence.tolerance).collect();

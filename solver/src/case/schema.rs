@@ -181,9 +181,13 @@ pub struct FramesSection {
     /// and the last step only.
     #[serde(default)]
     pub full_every: u64,
-    /// A frame of the anchor bars (line cells with their axial force) with every frame.
+    /// A frame of the anchor bars (line cells with their axial force) with the frames.
     #[serde(default = "yes")]
     pub anchors: bool,
+    /// Steps between two frames of the anchor bars (a multiple of `output.vtu_every`);
+    /// 0: with every frame. The first and the last step always get one.
+    #[serde(default)]
+    pub anchors_every: u64,
 }
 
 fn yes() -> bool {

@@ -212,6 +212,25 @@ pub struct BarLines {
 /// Why a bar could not be built (as text; the case builder adds the field path).
 pub type BarError = String;
 
+/// The element holding `p` when only elements that may not host bars do (docs/anchors.md,
+/// "Host elements": those inactive when the bars are installed).
+fn inactive_host(locator: &HostLocator, mesh: &Mesh, p: &[f64; 3]) -> Option<u32> {
+    if locator.locate(mesh, p).is_some() {
+        return None;
+    }
+    locator.locate_any(mesh, p).map(|h| h.element)
+}
+
+/// The error of a bar point `p`, `from_start` m along the bar, held only by the inactive
+/// element `e`.
+fn inactive_message(p: &[f64; 3], from_start: f64, e: u32) -> BarError {
+    format!(
+        "runs at {p:?} ({from_start:.3} m from its start) through element {e} only, which is \
+         not active when the bars are installed (excavated or not yet placed by the static \
+         stage): a bar point needs an active host"
+    )
+}
+
 impl AnchorBars {
     /// The host elements of every bar (perfect-bond segments and bond–slip bar nodes), with
     /// repeats: the elements whose nodes take the bars' forces.
@@ -243,7 +262,10 @@ impl AnchorBars {
             .cut(mesh, &a, &b, steel.segment_length)
             .map_err(|s| {
                 let p: [f64; 3] = std::array::from_fn(|d| a[d] + s * (b[d] - a[d]));
-                format!("leaves the mesh at {p:?} ({:.3} m from its start)", s * len)
+                match inactive_host(locator, mesh, &p) {
+                    Some(e) => inactive_message(&p, s * len, e),
+                    None => format!("leaves the mesh at {p:?} ({:.3} m from its start)", s * len),
+                }
             })?;
         let at = |s: f64| -> [f64; 3] { std::array::from_fn(|d| a[d] + s * (b[d] - a[d])) };
         let area = 0.25 * std::f64::consts::PI * steel.diameter * steel.diameter;
@@ -260,10 +282,14 @@ impl AnchorBars {
         });
         let locate = |e: u32, s: f64| {
             locator.locate_in(mesh, e, &at(s), 1e-6).ok_or_else(|| {
-                format!(
-                    "could not locate the point at {:.3} m in element {e}",
-                    s * len
-                )
+                let p = at(s);
+                match inactive_host(locator, mesh, &p) {
+                    Some(h) => inactive_message(&p, s * len, h),
+                    None => format!(
+                        "could not locate the point at {:.3} m in element {e}",
+                        s * len
+                    ),
+                }
             })
         };
         match steel.bond_stiffness {

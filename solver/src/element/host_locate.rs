@@ -58,6 +58,10 @@ pub struct HostLocator {
     bins: HashMap<[i64; 3], Vec<u32>>,
     /// Smallest element edge (sets the sampling of bars along their length).
     pub min_size: f64,
+    /// The elements that may host a point ([`Self::locate`]); `None`: every binned one.
+    /// The others are still binned, so that [`Self::locate_any`] tells a point held only
+    /// by ineligible elements from one outside the mesh.
+    eligible: Option<Vec<bool>>,
 }
 
 impl HostLocator {
@@ -103,17 +107,46 @@ impl HostLocator {
             cell,
             bins,
             min_size,
+            eligible: None,
         }
     }
 
-    /// The element holding `p` (the lowest element number among those that do, within a
-    /// tolerance of 1e-9 in natural coordinates), or `None` outside the mesh.
+    /// Bins over every element of `mesh` (the same bins and sampling as
+    /// `new(mesh, |_| true)`), of which only those with `eligible[e]` host points: the
+    /// anchors' locator, whose eligible elements are those active when the bars are
+    /// installed (docs/anchors.md, "Host elements").
+    pub fn with_eligible(mesh: &Mesh, eligible: Vec<bool>) -> Self {
+        assert_eq!(eligible.len(), mesh.n_elements(), "one flag per element");
+        Self {
+            eligible: Some(eligible),
+            ..Self::new(mesh, |_| true)
+        }
+    }
+
+    /// Whether element `e` may host a point.
+    pub fn is_eligible(&self, e: u32) -> bool {
+        self.eligible.as_ref().is_none_or(|m| m[e as usize])
+    }
+
+    /// The element holding `p` (the lowest element number among the eligible ones that do,
+    /// within a tolerance of 1e-9 in natural coordinates), or `None` where no eligible
+    /// element holds it.
     pub fn locate(&self, mesh: &Mesh, p: &[f64; 3]) -> Option<HostPoint> {
+        self.locate_among(mesh, p, true)
+    }
+
+    /// The lowest-numbered element holding `p`, eligible or not (to explain why
+    /// [`Self::locate`] found none).
+    pub fn locate_any(&self, mesh: &Mesh, p: &[f64; 3]) -> Option<HostPoint> {
+        self.locate_among(mesh, p, false)
+    }
+
+    fn locate_among(&self, mesh: &Mesh, p: &[f64; 3], eligible_only: bool) -> Option<HostPoint> {
         let k = p.map(|v| (v / self.cell).floor() as i64);
         let cands = self.bins.get(&k)?;
         let mut best: Option<HostPoint> = None;
         for &e in cands {
-            if best.is_some_and(|b| b.element < e) {
+            if best.is_some_and(|b| b.element < e) || (eligible_only && !self.is_eligible(e)) {
                 continue;
             }
             let x = mesh.element_coords(e as usize);

@@ -75,13 +75,21 @@ fn face_set<'m>(mesh: &'m Mesh, name: &str, field: &str, label: &str) -> Result<
     })
 }
 
-/// Build the bars of `[anchors]` into the model.
-pub(super) fn build_anchors(model: &mut Model, section: &AnchorSection, label: &str) -> Result<()> {
+/// Build the bars of `[anchors]` into the model. `active`: the elements active when the
+/// bars are installed (at the start of the seismic stage,
+/// [`super::static_stage::active_at_installation`]); a bar point is hosted by the
+/// lowest-numbered of them that holds it (docs/anchors.md, "Host elements").
+pub(super) fn build_anchors(
+    model: &mut Model,
+    section: &AnchorSection,
+    active: Vec<bool>,
+    label: &str,
+) -> Result<()> {
     if section.bars.is_empty() && section.patterns.is_empty() && section.mats.is_empty() {
         return Ok(());
     }
     let mesh = &model.mesh;
-    let locator = HostLocator::new(mesh, |_| true);
+    let locator = HostLocator::with_eligible(mesh, active);
     let mut bars = AnchorBars::default();
     for (i, b) in section.bars.iter().enumerate() {
         let field = format!("anchors.bars[{i}]");

@@ -133,7 +133,9 @@ fn build(
         let system = crate::contact::ContactSystem::new(&model.mesh, &file.interfaces, label)?;
         model.contact = Some(system);
     }
-    anchors::build_anchors(&mut model, &file.anchors, label)?;
+    let installed =
+        static_stage::active_at_installation(&model, file.static_stage.as_ref(), label)?;
+    anchors::build_anchors(&mut model, &file.anchors, installed, label)?;
     boundary::build_boundary(&mut model, &file.boundary, label)?;
     loads::build_loads(&mut model, &file.loads, label)?;
     loads::build_damping(&mut model, &file.damping, &file.regions, label)?;

@@ -45,6 +45,8 @@ pub(super) fn build_output(model: &Model, section: &OutputSection, label: &str) 
                 ));
             }
         }
+        frame_interval(label, "full_every", f.full_every, section.vtu_every)?;
+        frame_interval(label, "anchors_every", f.anchors_every, section.vtu_every)?;
     }
     if section.history_every == 0 {
         return Err(DcfmError::invalid(
@@ -55,6 +57,27 @@ pub(super) fn build_output(model: &Model, section: &OutputSection, label: &str) 
         ));
     }
     resolve_probes(model, section, label)
+}
+
+/// `output.frames.<key>` (steps between two whole-mesh or anchor frames) must be a multiple
+/// of `output.vtu_every`: those frames are written with the compact frames (docs/outputs.md),
+/// so any other interval would silently give the least common multiple. 0 is always
+/// allowed (`full_every`: first and last only; `anchors_every`: with every frame).
+fn frame_interval(label: &str, key: &str, every: u64, vtu_every: u64) -> Result<()> {
+    if every == 0 || (vtu_every > 0 && every.is_multiple_of(vtu_every)) {
+        return Ok(());
+    }
+    let expected = if vtu_every == 0 {
+        "0 (output.vtu_every = 0: frames at the first and the last step only)".to_string()
+    } else {
+        format!("0 or a multiple of output.vtu_every = {vtu_every} (steps)")
+    };
+    Err(DcfmError::invalid(
+        label,
+        format!("output.frames.{key}"),
+        every,
+        expected,
+    ))
 }
 
 /// Node and element probes in column order: `nodes`, `probes`, `elements`,

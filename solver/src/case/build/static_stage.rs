@@ -438,6 +438,60 @@ fn in_situ(
     }
 }
 
+/// Which elements are active at the end of the static stage — when the seismic stage
+/// starts and the anchor bars are installed: those active from the start (every element
+/// but those whose first appearance in the steps is in an `activate` list, as
+/// [`StaticPlan::derive_initially_inactive`]), then the steps' `excavate` (removed) and
+/// `activate` (placed) lists in order. Every element without a static stage. The
+/// sequence's consistency is checked by [`build_static`].
+pub(super) fn active_at_installation(
+    model: &Model,
+    section: Option<&StaticSection>,
+    label: &str,
+) -> Result<Vec<bool>> {
+    let n = model.n_elements();
+    let mut active = vec![true; n];
+    let Some(s) = section else {
+        return Ok(active);
+    };
+    let mut steps = Vec::with_capacity(s.steps.len());
+    for (k, st) in s.steps.iter().enumerate() {
+        let f = |kind: &str, j: usize| format!("static.steps[{k}].{kind}[{j}]");
+        let sets = |names: &[String], kind: &str| -> Result<Vec<ElementSet>> {
+            names
+                .iter()
+                .enumerate()
+                .map(|(j, name)| element_set(model, label, &f(kind, j), name))
+                .collect()
+        };
+        steps.push((
+            sets(&st.excavate, "excavate")?,
+            sets(&st.activate, "activate")?,
+        ));
+    }
+    let mut seen = vec![false; n];
+    for (excavate, activate) in &steps {
+        for &e in excavate.iter().flat_map(|set| &set.elements) {
+            seen[e as usize] = true;
+        }
+        for &e in activate.iter().flat_map(|set| &set.elements) {
+            if !seen[e as usize] {
+                active[e as usize] = false;
+            }
+            seen[e as usize] = true;
+        }
+    }
+    for (excavate, activate) in &steps {
+        for &e in excavate.iter().flat_map(|set| &set.elements) {
+            active[e as usize] = false;
+        }
+        for &e in activate.iter().flat_map(|set| &set.elements) {
+            active[e as usize] = true;
+        }
+    }
+    Ok(active)
+}
+
 /// The plan of `[static]`, or `None` when the case has no static stage.
 pub(super) fn build_static(
     model: &Model,

@@ -187,6 +187,9 @@ pub const FRAME_INTERVAL: f64 = 0.1;
 /// Interval of the checkpoints (s).
 pub const CHECKPOINT_INTERVAL: f64 = 5.0;
 
+/// Interval of the anchor bars' frames of the full variant (s).
+pub const ANCHORS_INTERVAL: f64 = 1.0;
+
 impl Timing {
     /// Field outputs every [`FRAME_INTERVAL`] exactly and checkpoints every
     /// [`CHECKPOINT_INTERVAL`]: the step is the largest that divides the frame interval and
@@ -210,6 +213,21 @@ impl Timing {
         match variant {
             Variant::Ci => self.vtu_every,
             Variant::Full => self.checkpoint_every,
+        }
+    }
+
+    /// Steps between two frames of the anchor bars (`[output.frames] anchors_every`): every
+    /// frame for the CI variant, whose 3 s the anchor checks read frame by frame; every
+    /// [`ANCHORS_INTERVAL`] for the full variant, whose ≈ 75,000 bars (mats, crane-beam
+    /// anchors, bolts; ≈ 10 MB a frame at ≈ 130 bytes a segment: end points, connectivity
+    /// and three Float64 fields in base64) would write ≈ 6 GB in 600 frames, twice the
+    /// issue's 3 GB for the run's outputs: 61 frames ≈ 0.6 GB, within ≈ 1 GB for them
+    /// (docs/yingxiuwan.md). A multiple of `vtu_every` by construction, and a divisor of the
+    /// whole-mesh interval, so that every whole-mesh frame has its anchors frame.
+    pub fn anchors_every(&self, variant: Variant) -> u64 {
+        match variant {
+            Variant::Ci => self.vtu_every,
+            Variant::Full => self.vtu_every * (ANCHORS_INTERVAL / FRAME_INTERVAL).round() as u64,
         }
     }
 }
@@ -269,13 +287,14 @@ damage_threshold = 0.1          # docs/plastic_damage.md §5
 damaged_volume = "point"
 
 # Compact frames (docs/outputs.md): case.pvd holds the concrete (its nodes carry the
-# interfaces' contact fields) in Float32 every frame, anchors.pvd the rock bolts' axial
-# force per segment every frame, full.pvd the whole mesh (every field, Float64) every
+# interfaces' contact fields) in Float32 every frame, anchors.pvd the bars' axial force
+# per segment every {anchors_s} s, full.pvd the whole mesh (every field, Float64) every
 # {full_s} s and at the end.
 [output.frames]
 regions = ["lining", "inner"]
 full_every = {full}
 anchors = true
+anchors_every = {anchors_every}
 
 # ---- Mesh: regions rock{zones} / lining / inner / excavated (the excavated volume, as rock,
 # removed bench by bench in the static stage; the concrete overlaps it and is placed after).
@@ -320,6 +339,11 @@ recovery = "consistent"
         vtu = spec.timing.vtu_every,
         ckpt = spec.timing.checkpoint_every,
         full = spec.timing.full_every(spec.variant),
+        anchors_every = spec.timing.anchors_every(spec.variant),
+        anchors_s = match spec.variant {
+            Variant::Ci => FRAME_INTERVAL,
+            Variant::Full => ANCHORS_INTERVAL,
+        },
         full_s = match spec.variant {
             Variant::Ci => FRAME_INTERVAL,
             Variant::Full => CHECKPOINT_INTERVAL,
@@ -892,5 +916,13 @@ mod tests {
         // Whole-mesh frames: every frame for CI, every checkpoint for the full variant.
         assert_eq!(t.full_every(Variant::Ci), t.vtu_every);
         assert_eq!(t.full_every(Variant::Full), t.checkpoint_every);
+        // Anchor frames: every frame for CI, every 1 s (10 frames) for the full variant,
+        // which divides the whole-mesh interval.
+        assert_eq!(t.anchors_every(Variant::Ci), t.vtu_every);
+        assert_eq!(t.anchors_every(Variant::Full), 10 * t.vtu_every);
+        assert_eq!(
+            t.full_every(Variant::Full) % t.anchors_every(Variant::Full),
+            0
+        );
     }
 }

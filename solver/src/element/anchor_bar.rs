@@ -19,9 +19,14 @@
 //! the host ([`AnchorBars::commit`]). Pull-out of such a bar from a fixed host follows
 //! N(x) = P sinh(λ(L − x))/sinh(λL), λ = √(k_s/EA) (VERIFICATION.md W11).
 //!
-//! Determinism: bars are processed serially in input order after the element colours, so
-//! results do not depend on the number of threads.
+//! Determinism: the perfect-bond pass runs in two parallel phases whose results do not
+//! depend on how rayon splits them ([`AnchorBars::add_internal_forces`]): every segment's
+//! axial force from its own host nodes, then every host node's sum over its segments in
+//! segment order — the same additions in the same order as a serial loop over the
+//! segments in input order. The bond–slip bars follow serially in input order. So results
+//! do not depend on the number of threads.
 
+use rayon::prelude::*;
 use serde::Deserialize;
 
 use crate::element::host_locate::{HostLocator, HostPoint};
@@ -122,7 +127,73 @@ pub struct Segment {
     pub length: f64,
     /// End points (reference).
     pub x: [[f64; 3]; 2],
+    /// The host element's nodes.
+    pub nodes: [u32; 8],
 }
+
+/// What the force pass reads of a perfect-bond segment, packed (built by
+/// [`AnchorBars::finish`]).
+#[derive(Clone, Debug)]
+struct SegmentKernel {
+    nodes: [u32; 8],
+    g: [f64; 8],
+    t: [f64; 3],
+    length: f64,
+    ea: f64,
+    yield_force: f64,
+    pretension: f64,
+}
+
+/// The host nodes of the perfect-bond segments with, for every node, the segments that
+/// push on it in segment order (CSR), and a sum buffer per node: the scatter of
+/// [`AnchorBars::add_internal_forces`], built by [`AnchorBars::finish`].
+#[derive(Clone, Debug, Default)]
+struct NodeScatter {
+    /// Distinct host nodes, ascending.
+    nodes: Vec<u32>,
+    /// Entries of node i: `start[i]..start[i + 1]`.
+    start: Vec<u32>,
+    /// Segment of every entry, ascending within a node.
+    segment: Vec<u32>,
+    /// N_a(q) − N_a(p) of the entry's node in its segment.
+    g: Vec<f64>,
+    /// f_int of every node with its segments' forces added.
+    sum: Vec<[f64; 3]>,
+}
+
+impl NodeScatter {
+    fn new(kernels: &[SegmentKernel]) -> Self {
+        let mut pairs: Vec<(u32, u32, u8)> = Vec::with_capacity(8 * kernels.len());
+        for (k, s) in kernels.iter().enumerate() {
+            for (a, &n) in s.nodes.iter().enumerate() {
+                pairs.push((n, k as u32, a as u8));
+            }
+        }
+        pairs.sort_unstable();
+        let mut out = NodeScatter {
+            segment: pairs.iter().map(|p| p.1).collect(),
+            g: pairs
+                .iter()
+                .map(|&(_, k, a)| kernels[k as usize].g[a as usize])
+                .collect(),
+            ..Default::default()
+        };
+        for (i, p) in pairs.iter().enumerate() {
+            if out.nodes.last() != Some(&p.0) {
+                out.nodes.push(p.0);
+                out.start.push(i as u32);
+            }
+        }
+        out.start.push(pairs.len() as u32);
+        out.sum = vec![[0.0; 3]; out.nodes.len()];
+        out
+    }
+}
+
+/// Segments per rayon task of the segment phase, host nodes per task of the node phase:
+/// large enough to amortise the task, small enough to balance two to a few threads.
+const SEGMENTS_PER_TASK: usize = 1024;
+const NODES_PER_TASK: usize = 512;
 
 /// A bond–slip bar: its own nodes.
 #[derive(Clone, Debug)]
@@ -190,6 +261,12 @@ pub struct AnchorBars {
     /// Elongation t·(u(q) − u(p)) of every perfect-bond segment at installation
     /// ([`AnchorBars::install_at`]; empty: installed in the reference configuration).
     elongation_reference: Vec<f64>,
+    /// Packed segment data, the per-node scatter and N t of every perfect-bond segment at
+    /// the last pass, sized by [`AnchorBars::finish`] so that the step loop allocates
+    /// nothing.
+    kernels: Vec<SegmentKernel>,
+    scatter: NodeScatter,
+    force_vector: Vec<[f64; 3]>,
 }
 
 /// A bar's name and its history group.
@@ -305,6 +382,7 @@ impl AnchorBars {
                         t,
                         length: (w[1] - w[0]) * len,
                         x: [at(w[0]), at(w[1])],
+                        nodes: mesh.elements[h as usize],
                     });
                 }
             }
@@ -353,6 +431,24 @@ impl AnchorBars {
         self.plastic = vec![0.0; n];
         self.plastic_trial = vec![0.0; n];
         self.force = vec![0.0; n];
+        self.kernels = self
+            .segments
+            .iter()
+            .map(|s| {
+                let info = &self.bars[s.bar as usize];
+                SegmentKernel {
+                    nodes: s.nodes,
+                    g: s.g,
+                    t: s.t,
+                    length: s.length,
+                    ea: info.ea,
+                    yield_force: info.yield_force,
+                    pretension: info.pretension,
+                }
+            })
+            .collect();
+        self.scatter = NodeScatter::new(&self.kernels);
+        self.force_vector = vec![[0.0; 3]; self.segments.len()];
     }
 
     /// Install the bars in the deformed configuration `u` (host displacements): from now
@@ -428,49 +524,75 @@ impl AnchorBars {
         }
     }
 
-    /// Elastic–perfectly plastic axial force of segment `k` for axial strain `eps`, the
-    /// trial plastic strain stored.
-    #[inline]
-    fn axial_force(&mut self, k: usize, info_ea: f64, yield_force: f64, n0: f64, eps: f64) -> f64 {
-        let ep = self.plastic[k];
-        let trial = n0 + info_ea * (eps - ep);
-        if trial.abs() <= yield_force {
-            self.plastic_trial[k] = ep;
-            trial
-        } else {
-            let n = yield_force * trial.signum();
-            self.plastic_trial[k] = ep + (trial - n) / info_ea;
-            n
-        }
-    }
-
     /// Add the bars' internal forces for host displacements `u` to `f_int` (the lead's
     /// internal-force pass calls this after the element colours). Plastic strains are
     /// trial values until [`AnchorBars::commit`].
+    ///
+    /// Perfect bond, in two parallel phases over buffers sized by [`AnchorBars::finish`]:
+    /// 1. every segment k (its own task's entries only): ε = t·(u(q) − u(p))/l, N and the
+    ///    trial εᵖ ([`elastic_plastic`]), and N t;
+    /// 2. every host node n: f_int(n) + Σ_k (N t)_k (N_a(q) − N_a(p)) over its segments in
+    ///    ascending k, then written back to f_int.
+    ///
+    /// Each node receives exactly the additions, in exactly the order, of a serial loop
+    /// over the segments in input order, however rayon splits the work: the forces are
+    /// the same bit for bit on any number of threads.
     pub fn add_internal_forces(&mut self, mesh: &Mesh, u: &[[f64; 3]], f_int: &mut [[f64; 3]]) {
-        for k in 0..self.segments.len() {
-            let (host, g, t, length, bar) = {
-                let s = &self.segments[k];
-                (s.host, s.g, s.t, s.length, s.bar)
-            };
-            let conn = mesh.elements[host as usize];
-            let mut du = 0.0;
-            for a in 0..8 {
-                let ua = u[conn[a] as usize];
-                du += g[a] * (t[0] * ua[0] + t[1] * ua[1] + t[2] * ua[2]);
-            }
-            if let Some(r) = self.elongation_reference.get(k) {
-                du -= r;
-            }
-            let info = &self.bars[bar as usize];
-            let (ea, fy, n0) = (info.ea, info.yield_force, info.pretension);
-            let n = self.axial_force(k, ea, fy, n0, du / length);
-            self.force[k] = n;
-            for a in 0..8 {
-                let f = &mut f_int[conn[a] as usize];
-                for d in 0..3 {
-                    f[d] += n * t[d] * g[a];
-                }
+        let nseg = self.segments.len();
+        {
+            let kernels = &self.kernels;
+            let plastic = &self.plastic[..nseg];
+            let reference = &self.elongation_reference;
+            self.force[..nseg]
+                .par_iter_mut()
+                .zip(self.plastic_trial[..nseg].par_iter_mut())
+                .zip(self.force_vector.par_iter_mut())
+                .enumerate()
+                .with_min_len(SEGMENTS_PER_TASK)
+                .for_each(|(k, ((force, trial), nt))| {
+                    let s = &kernels[k];
+                    let t = s.t;
+                    let mut du = 0.0;
+                    for a in 0..8 {
+                        let ua = u[s.nodes[a] as usize];
+                        du += s.g[a] * (t[0] * ua[0] + t[1] * ua[1] + t[2] * ua[2]);
+                    }
+                    if let Some(r) = reference.get(k) {
+                        du -= r;
+                    }
+                    let (n, ep) = elastic_plastic(
+                        plastic[k],
+                        s.ea,
+                        s.yield_force,
+                        s.pretension,
+                        du / s.length,
+                    );
+                    *force = n;
+                    *trial = ep;
+                    *nt = [n * t[0], n * t[1], n * t[2]];
+                });
+        }
+        {
+            let sc = &mut self.scatter;
+            let (nodes, start, segment, g) = (&sc.nodes, &sc.start, &sc.segment, &sc.g);
+            let nt = &self.force_vector;
+            let f_in: &[[f64; 3]] = f_int;
+            sc.sum
+                .par_iter_mut()
+                .enumerate()
+                .with_min_len(NODES_PER_TASK)
+                .for_each(|(i, sum)| {
+                    let mut f = f_in[nodes[i] as usize];
+                    for e in start[i] as usize..start[i + 1] as usize {
+                        let (v, ga) = (nt[segment[e] as usize], g[e]);
+                        for d in 0..3 {
+                            f[d] += v[d] * ga;
+                        }
+                    }
+                    *sum = f;
+                });
+            for (&n, f) in sc.nodes.iter().zip(&sc.sum) {
+                f_int[n as usize] = *f;
             }
         }
         for bi in 0..self.bond_slip.len() {
@@ -482,7 +604,8 @@ impl AnchorBars {
             for s in 0..nseg {
                 let b = &self.bond_slip[bi];
                 let eps = (b.w[s + 1] - b.w[s]) / b.lengths[s];
-                let n = self.axial_force(first + s, ea, fy, 0.0, eps);
+                let (n, ep) = elastic_plastic(self.plastic[first + s], ea, fy, 0.0, eps);
+                self.plastic_trial[first + s] = ep;
                 self.force[first + s] = n;
             }
             let b = &mut self.bond_slip[bi];
@@ -726,6 +849,21 @@ impl AnchorBars {
     }
 }
 
+/// Elastic–perfectly plastic axial force for axial strain `eps` from the committed plastic
+/// strain `ep`, stiffness `ea`, yield force `yield_force` and pretension `n0`: N = n0 +
+/// EA (ε − εᵖ) if |N| ≤ f_y A, else ±f_y A with εᵖ grown by the excess (module docs).
+/// Returns (N, trial εᵖ).
+#[inline]
+fn elastic_plastic(ep: f64, ea: f64, yield_force: f64, n0: f64, eps: f64) -> (f64, f64) {
+    let trial = n0 + ea * (eps - ep);
+    if trial.abs() <= yield_force {
+        (trial, ep)
+    } else {
+        let n = yield_force * trial.signum();
+        (n, ep + (trial - n) / ea)
+    }
+}
+
 /// Largest eigenvalue of M^{-1/2} K M^{-1/2} of a free chain of axial bar segments
 /// (stiffness EA/l_s between nodes of lumped mass m_i): Sturm-sequence bisection on the
 /// symmetric tridiagonal matrix, returning the upper end of the final bracket (Wilkinson,
@@ -779,4 +917,127 @@ pub fn chain_max_eigenvalue(ea: f64, lengths: &[f64], mass: &[f64]) -> f64 {
         }
     }
     hi
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::element::anchor_mat::mat_bars;
+    use crate::element::anchor_pattern::pattern_points;
+    use crate::mesh::box_generator::BoxMeshSpec;
+
+    fn steel(pretension: f64) -> SteelSpec {
+        SteelSpec {
+            diameter: 0.025,
+            young: 200e9,
+            yield_stress: 335e6,
+            density: 7850.0,
+            pretension,
+            bond_stiffness: None,
+            segment_length: None,
+        }
+    }
+
+    /// The parallel pass (on a two-thread pool, several tasks per phase) gives, bit for
+    /// bit, the forces and trial plastic strains of the serial loop over the segments in
+    /// input order written out from the module docs: ε = t·(u(q) − u(p))/l less the
+    /// installation elongation, N = N₀ + EA (ε − εᵖ) clipped at ±f_y A, f_a += N t g_a —
+    /// added to host forces already non-zero (the element pass), with some segments
+    /// yielding.
+    #[test]
+    fn parallel_pass_matches_the_serial_loop_in_segment_order() {
+        let mesh = BoxMeshSpec::single("b", [0.0; 3], [12.0, 12.0, 6.0], [12, 12, 6])
+            .build("test")
+            .unwrap();
+        let locator = HostLocator::new(&mesh, |_| true);
+        let mut bars = AnchorBars::default();
+        let mut add = |k: usize, ends: [[f64; 3]; 2], pre: f64| {
+            let names = BarNames {
+                name: format!("b{k}"),
+                group: "g".into(),
+            };
+            bars.add_bar(&mesh, &locator, names, ends, &steel(pre))
+                .unwrap();
+        };
+        let mut k = 0;
+        for side in ["b.zmax", "b.xmin"] {
+            for ends in mat_bars(&mesh, &mesh.face_sets[side], 0.05, 0.1).unwrap() {
+                add(k, ends, 0.0);
+                k += 1;
+            }
+        }
+        for (p, n) in pattern_points(&mesh, &mesh.face_sets["b.zmax"], 0.5) {
+            add(k, [p, std::array::from_fn(|d| p[d] + 3.0 * n[d])], 2e4);
+            k += 1;
+        }
+        bars.finish();
+        // Several tasks in each phase.
+        let (segments, nodes) = (bars.segments.len(), bars.scatter.nodes.len());
+        assert!(segments > 3 * SEGMENTS_PER_TASK, "{segments} segments");
+        assert!(nodes > NODES_PER_TASK, "{nodes} host nodes");
+        // Installed in a slightly deformed state, then strained up to 4e-3 > f_y/E.
+        let field = |x: &[f64; 3], a: f64| -> [f64; 3] {
+            [
+                a * (x[0] * x[2]).sin(),
+                a * (0.7 * x[1] + x[0]).cos(),
+                a * x[0] * x[1] * 0.1,
+            ]
+        };
+        let u0: Vec<[f64; 3]> = mesh.coords.iter().map(|x| field(x, 1e-5)).collect();
+        bars.install_at(&mesh, &u0);
+        let u: Vec<[f64; 3]> = mesh.coords.iter().map(|x| field(x, 4e-3)).collect();
+        let f0: Vec<[f64; 3]> = mesh
+            .coords
+            .iter()
+            .map(|x| [x[0] * 1e3 + 0.1, -x[1] * 7e2, x[2] * 3.3e2 + 1.0 / 3.0])
+            .collect();
+
+        // The serial reference.
+        let mut f_ref = f0.clone();
+        let mut force_ref = vec![0.0; bars.segments.len()];
+        let mut trial_ref = vec![0.0; bars.segments.len()];
+        for (k, s) in bars.segments.iter().enumerate() {
+            let conn = mesh.elements[s.host as usize];
+            let mut du = 0.0;
+            for a in 0..8 {
+                let ua = u[conn[a] as usize];
+                du += s.g[a] * (s.t[0] * ua[0] + s.t[1] * ua[1] + s.t[2] * ua[2]);
+            }
+            du -= bars.elongation_reference[k];
+            let info = &bars.bars[s.bar as usize];
+            let ep = bars.plastic[k];
+            let trial = info.pretension + info.ea * (du / s.length - ep);
+            let (n, ep_new) = if trial.abs() <= info.yield_force {
+                (trial, ep)
+            } else {
+                let n = info.yield_force * trial.signum();
+                (n, ep + (trial - n) / info.ea)
+            };
+            force_ref[k] = n;
+            trial_ref[k] = ep_new;
+            for a in 0..8 {
+                for d in 0..3 {
+                    f_ref[conn[a] as usize][d] += n * s.t[d] * s.g[a];
+                }
+            }
+        }
+        let yielded = trial_ref.iter().filter(|&&e| e != 0.0).count();
+        assert!(
+            yielded > 0 && yielded < bars.segments.len(),
+            "{yielded} yielded"
+        );
+
+        let pool = rayon::ThreadPoolBuilder::new()
+            .num_threads(2)
+            .build()
+            .unwrap();
+        let mut f = f0.clone();
+        pool.install(|| bars.add_internal_forces(&mesh, &u, &mut f));
+        assert!(f == f_ref, "host forces differ from the serial loop");
+        assert!(bars.force == force_ref, "axial forces differ");
+        assert!(
+            bars.plastic_trial == trial_ref,
+            "trial plastic strains differ"
+        );
+    }
 }

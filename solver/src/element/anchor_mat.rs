@@ -18,6 +18,7 @@
 use serde::Deserialize;
 
 use crate::element::anchor_bar::SteelSpec;
+use crate::mesh::face_geometry::{cross, face_point, norm, sub};
 use crate::mesh::{Face, Mesh};
 
 /// `[[anchors.mats]]`: a two-way mat of bars under every face of a face set.
@@ -37,25 +38,18 @@ pub struct MatSpec {
     pub steel: SteelSpec,
 }
 
-/// Bilinear point, outward unit normal at (s, t) of the quad `q`.
-fn point_and_normal(q: &[[f64; 3]; 4], s: f64, t: f64) -> Option<([f64; 3], [f64; 3])> {
-    let w = [(1.0 - s) * (1.0 - t), s * (1.0 - t), s * t, (1.0 - s) * t];
-    let p: [f64; 3] = std::array::from_fn(|d| (0..4).map(|k| w[k] * q[k][d]).sum());
-    let ds: [f64; 3] =
-        std::array::from_fn(|d| (1.0 - t) * (q[1][d] - q[0][d]) + t * (q[2][d] - q[3][d]));
-    let dt: [f64; 3] =
-        std::array::from_fn(|d| (1.0 - s) * (q[3][d] - q[0][d]) + s * (q[2][d] - q[1][d]));
-    let n = [
-        ds[1] * dt[2] - ds[2] * dt[1],
-        ds[2] * dt[0] - ds[0] * dt[2],
-        ds[0] * dt[1] - ds[1] * dt[0],
-    ];
-    let len = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+/// Bilinear point and outward unit normal at (s, t) ∈ [0, 1]² of the quad `q` (corners
+/// counter-clockwise seen from outside): the face of [`face_point`] at ξ, η = 2s − 1,
+/// 2t − 1, its normal ∂x/∂ξ × ∂x/∂η normalised; `None` where the face is degenerate.
+pub(crate) fn point_and_normal(q: &[[f64; 3]; 4], s: f64, t: f64) -> Option<([f64; 3], [f64; 3])> {
+    let (p, dxi, deta) = face_point(q, 2.0 * s - 1.0, 2.0 * t - 1.0);
+    let n = cross(dxi, deta);
+    let len = norm(n);
     (len > 0.0 && len.is_finite()).then(|| (p, n.map(|v| v / len)))
 }
 
 fn distance(a: &[f64; 3], b: &[f64; 3]) -> f64 {
-    (0..3).map(|d| (a[d] - b[d]).powi(2)).sum::<f64>().sqrt()
+    norm(sub(*a, *b))
 }
 
 /// The bars (start, end) of a mat under `faces`, face by face in set order, first those

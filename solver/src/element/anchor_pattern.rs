@@ -10,6 +10,8 @@
 
 use std::collections::HashMap;
 
+use crate::element::anchor_mat::point_and_normal;
+use crate::mesh::face_geometry::{norm, sub};
 use crate::mesh::{Face, Mesh};
 
 /// Start points and inward unit normals of the bars of a pattern.
@@ -22,36 +24,17 @@ pub fn pattern_points(mesh: &Mesh, faces: &[Face], spacing: f64) -> Vec<([f64; 3
     for f in faces {
         let q = mesh.face_nodes(*f).map(|n| mesh.coords[n as usize]);
         let size = (0..4)
-            .map(|i| {
-                (0..3)
-                    .map(|d| (q[(i + 1) % 4][d] - q[i][d]).powi(2))
-                    .sum::<f64>()
-                    .sqrt()
-            })
+            .map(|i| norm(sub(q[(i + 1) % 4], q[i])))
             .fold(0.0, f64::max);
         let n = ((4.0 * size / spacing).ceil() as usize).max(1);
         for i in 0..n {
             for j in 0..n {
                 let (s, t) = ((i as f64 + 0.5) / n as f64, (j as f64 + 0.5) / n as f64);
                 // Bilinear point and the (outward, counter-clockwise) normal there.
-                let w = [(1.0 - s) * (1.0 - t), s * (1.0 - t), s * t, (1.0 - s) * t];
-                let p: [f64; 3] = std::array::from_fn(|d| (0..4).map(|k| w[k] * q[k][d]).sum());
-                let ds: [f64; 3] = std::array::from_fn(|d| {
-                    (1.0 - t) * (q[1][d] - q[0][d]) + t * (q[2][d] - q[3][d])
-                });
-                let dt: [f64; 3] = std::array::from_fn(|d| {
-                    (1.0 - s) * (q[3][d] - q[0][d]) + s * (q[2][d] - q[1][d])
-                });
-                let nrm = [
-                    ds[1] * dt[2] - ds[2] * dt[1],
-                    ds[2] * dt[0] - ds[0] * dt[2],
-                    ds[0] * dt[1] - ds[1] * dt[0],
-                ];
-                let len = (nrm[0] * nrm[0] + nrm[1] * nrm[1] + nrm[2] * nrm[2]).sqrt();
-                if len <= 0.0 {
+                let Some((p, outward)) = point_and_normal(&q, s, t) else {
                     continue;
-                }
-                let inward = nrm.map(|v| -v / len);
+                };
+                let inward = outward.map(|v| -v);
                 let k = key(&p);
                 let mut far = true;
                 'near: for dx in -1..=1 {

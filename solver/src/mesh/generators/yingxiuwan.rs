@@ -504,6 +504,21 @@ diameter = 0.025
 young = 200e9
 yield_stress = 335e6
 
+# Ties between the lining's two mats (the through-thickness bars of a wall with two
+# layers of reinforcement): φ12 HPB300 at 0.6 m × 0.6 m from the inner mat (0.06 m below
+# the free face) to the outer one (0.06 m from the rock), 0.88 m across the 1.0 m lining.
+# The mats lie parallel to the faces and cross no crack parallel to them: without ties a
+# fully cracked 1 m element opens through the thickness (docs/yingxiuwan.md). -----------
+[[anchors.patterns]]
+name = "lining_ties"
+face_set = "lining_surface"
+depth = 0.06
+length = 0.88
+spacing = 0.6
+diameter = 0.012
+young = 200e9
+yield_stress = 300e6
+
 # Rock-anchored crane beams (typical Chinese practice for powerhouse caverns of the period,
 # docs/yingxiuwan.md): the beam and its corbel tied to the rock wall by fully grouted φ36
 # HRB400 anchors at 0.75 m × 0.75 m, 12 m long from the beam's face through the corbel

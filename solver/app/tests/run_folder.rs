@@ -174,18 +174,7 @@ segment_length = 0.3
 #[test]
 fn a_resumed_run_with_yielding_anchors_matches_an_uninterrupted_run() {
     let root = dir("anchors");
-    let go = |text: &str, out: &Path, resume: bool| {
-        run_case(
-            parse_case(text, "anchored.toml", Path::new(".")).unwrap(),
-            &RunOptions {
-                out: out.to_path_buf(),
-                resume,
-                progress: false,
-                ..Default::default()
-            },
-        )
-        .unwrap()
-    };
+    let go = go_anchored;
     let full = go(ANCHORED, &root.join("full"), false);
     go(
         &ANCHORED.replace("end = 0.002", "end = 0.0011"),

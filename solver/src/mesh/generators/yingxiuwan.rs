@@ -188,7 +188,7 @@ pub const FRAME_INTERVAL: f64 = 0.1;
 pub const CHECKPOINT_INTERVAL: f64 = 5.0;
 
 /// Interval of the anchor bars' frames of the full variant (s).
-pub const ANCHORS_INTERVAL: f64 = 1.0;
+pub const ANCHORS_INTERVAL: f64 = 2.5;
 
 impl Timing {
     /// Field outputs every [`FRAME_INTERVAL`] exactly and checkpoints every
@@ -218,10 +218,11 @@ impl Timing {
 
     /// Steps between two frames of the anchor bars (`[output.frames] anchors_every`): every
     /// frame for the CI variant, whose 3 s the anchor checks read frame by frame; every
-    /// [`ANCHORS_INTERVAL`] for the full variant, whose ≈ 75,000 bars (mats, crane-beam
-    /// anchors, bolts; ≈ 10 MB a frame at ≈ 130 bytes a segment: end points, connectivity
-    /// and three Float64 fields in base64) would write ≈ 6 GB in 600 frames, twice the
-    /// issue's 3 GB for the run's outputs: 61 frames ≈ 0.6 GB, within ≈ 1 GB for them
+    /// [`ANCHORS_INTERVAL`] for the full variant, whose ≈ 146,000 bars (mats in the lining
+    /// and the inner structure, ties, crane-beam anchors, bolts) write at least ≈ 19 MB a
+    /// frame at ≈ 129 bytes a segment (measured on the CI variant's frames: 5.0 MB for
+    /// 38,730 segments; end points, connectivity and three Float64 fields in base64): ≥ 11 GB
+    /// in 600 frames, beyond the 3 GB for the run's outputs; 25 frames ≥ 0.5 GB
     /// (docs/yingxiuwan.md). A multiple of `vtu_every` by construction, and a divisor of the
     /// whole-mesh interval, so that every whole-mesh frame has its anchors frame.
     pub fn anchors_every(&self, variant: Variant) -> u64 {
@@ -931,10 +932,10 @@ mod tests {
         // Whole-mesh frames: every frame for CI, every checkpoint for the full variant.
         assert_eq!(t.full_every(Variant::Ci), t.vtu_every);
         assert_eq!(t.full_every(Variant::Full), t.checkpoint_every);
-        // Anchor frames: every frame for CI, every 1 s (10 frames) for the full variant,
+        // Anchor frames: every frame for CI, every 2.5 s (25 frames) for the full variant,
         // which divides the whole-mesh interval.
         assert_eq!(t.anchors_every(Variant::Ci), t.vtu_every);
-        assert_eq!(t.anchors_every(Variant::Full), 10 * t.vtu_every);
+        assert_eq!(t.anchors_every(Variant::Full), 25 * t.vtu_every);
         assert_eq!(
             t.full_every(Variant::Full) % t.anchors_every(Variant::Full),
             0

@@ -174,14 +174,13 @@ segment_length = 0.3
 #[test]
 fn a_resumed_run_with_yielding_anchors_matches_an_uninterrupted_run() {
     let root = dir("anchors");
-    let go = go_anchored;
-    let full = go(ANCHORED, &root.join("full"), false);
-    go(
+    let full = run_anchored(ANCHORED, &root.join("full"), false);
+    run_anchored(
         &ANCHORED.replace("end = 0.002", "end = 0.0011"),
         &root.join("part"),
         false,
     );
-    let resumed = go(ANCHORED, &root.join("part"), true);
+    let resumed = run_anchored(ANCHORED, &root.join("part"), true);
     assert!(resumed.resumed_from_step.is_some_and(|s| s > 0));
     let a = std::fs::read_to_string(root.join("full/histories.csv")).unwrap();
     let b = std::fs::read_to_string(root.join("part/histories.csv")).unwrap();
@@ -220,7 +219,8 @@ fn compact(text: &str) -> String {
         + "[output.frames]\nregions = [\"b\"]\nfull_every = 4\n"
 }
 
-fn run_anchored(text: &str, out: &Path, resume: bool) {
+/// Run `text` (the anchored block) into `out`.
+fn run_anchored(text: &str, out: &Path, resume: bool) -> RunSummary {
     run_case(
         parse_case(text, "anchored.toml", Path::new(".")).unwrap(),
         &RunOptions {
@@ -230,7 +230,7 @@ fn run_anchored(text: &str, out: &Path, resume: bool) {
             ..Default::default()
         },
     )
-    .unwrap();
+    .unwrap()
 }
 
 /// (file, time) of every entry of a collection.
@@ -303,20 +303,6 @@ fn a_resumed_run_with_compact_frames_lists_the_frames_of_an_uninterrupted_run() 
     let _ = std::fs::remove_dir_all(&root);
 }
 
-/// Run `text` (the anchored block) into `out`.
-fn go_anchored(text: &str, out: &Path, resume: bool) -> RunSummary {
-    run_case(
-        parse_case(text, "anchored.toml", Path::new(".")).unwrap(),
-        &RunOptions {
-            out: out.to_path_buf(),
-            resume,
-            progress: false,
-            ..Default::default()
-        },
-    )
-    .unwrap()
-}
-
 /// Steps of the frames a collection lists (`anchors_000006.vtu` → 6) with their times.
 fn listed_steps(pvd: &Path) -> Vec<(u64, u64)> {
     PvdCollection::load(pvd)
@@ -337,7 +323,7 @@ fn listed_steps(pvd: &Path) -> Vec<(u64, u64)> {
 fn anchors_frames_come_every_anchors_every_steps_and_at_the_first_and_last() {
     let root = dir("anchors-every");
     let out = root.join("out");
-    let s = go_anchored(&(compact(ANCHORED) + "anchors_every = 6\n"), &out, false);
+    let s = run_anchored(&(compact(ANCHORED) + "anchors_every = 6\n"), &out, false);
     let n = s.steps;
     assert!(
         n > 12 && !n.is_multiple_of(6),
@@ -374,9 +360,9 @@ fn anchors_frames_come_every_anchors_every_steps_and_at_the_first_and_last() {
 fn a_resumed_run_keeps_anchors_pvd_on_the_anchors_every_schedule() {
     let root = dir("anchors-every-resume");
     let text = compact(ANCHORED) + "anchors_every = 6\n";
-    let full = go_anchored(&text, &root.join("full"), false);
+    let full = run_anchored(&text, &root.join("full"), false);
     let end4 = 4.0 * full.dt;
-    go_anchored(
+    run_anchored(
         &text.replace("end = 0.002", &format!("end = {end4:?}")),
         &root.join("part"),
         false,
@@ -388,7 +374,7 @@ fn a_resumed_run_keeps_anchors_pvd_on_the_anchors_every_schedule() {
             .collect()
     };
     assert_eq!(steps(&root.join("part")), [0, 4]);
-    let resumed = go_anchored(&text, &root.join("part"), true);
+    let resumed = run_anchored(&text, &root.join("part"), true);
     assert_eq!(resumed.resumed_from_step, Some(4));
     for name in ["case.pvd", "full.pvd", "anchors.pvd"] {
         assert_eq!(

@@ -555,6 +555,23 @@ spacing = 0.2
 diameter = 0.025
 young = 200e9
 yield_stress = 335e6
+
+# Ties in the inner structure, as in the lining: φ12 HPB300 at 0.6 m × 0.6 m from 0.06 m
+# below each free face, 0.88 m inwards. Its floors and walls are 1.0 m thick (docs/
+# yingxiuwan.md), so a tie ends 0.06 m short of the opposite face; a 1 m member with two
+# free faces gets them from both (twice the ties across a crack parallel to its faces);
+# in the 2 m pedestal walls and the mass concrete they reach 0.94 m in. Without them the
+# generator floor opens through its thickness between its mats after ≈ 9 s of the
+# Wolong-like input and its underside falls (docs/yingxiuwan.md). ----------------------
+[[anchors.patterns]]
+name = "inner_ties"
+face_set = "inner_surface"
+depth = 0.06
+length = 0.88
+spacing = 0.6
+diameter = 0.012
+young = 200e9
+yield_stress = 300e6
 "#;
     if m.upper_anchorage {
         s += r#"

@@ -70,6 +70,66 @@ pub struct ElementGroup {
     /// 15 % more CPU time on the 20³ cube: its lane values spill to the stack,
     /// docs/benchmarks.md, issue 11).
     pub lanes: bool,
+    /// The two-phase force pass ([`add_internal_forces`]): every element's forces computed
+    /// in parallel element by element into these buffers, then added to the nodes run by
+    /// run in the colouring's order. `Some` (the default) for groups whose material is not
+    /// linear elastic: a plastic-damage update costs microseconds per point, and where the
+    /// damage gathers in a few colouring runs the one-phase pass runs those on one thread
+    /// each. `None`: each run computes and adds its elements on one thread. The sums are
+    /// the same additions in the same order either way (bit-identical results).
+    pub element_forces: Option<ElementForces>,
+}
+
+/// Per-element force buffers of the two-phase force pass (in the group's order).
+#[derive(Clone, Debug, Default)]
+pub struct ElementForces {
+    /// Internal force of each element's eight nodes (N).
+    internal: Vec<[[f64; 3]; 8]>,
+    /// Stiffness-proportional damping force β K0 v of each element's nodes (N).
+    damping: Vec<[[f64; 3]; 8]>,
+}
+
+impl ElementForces {
+    /// Buffers for `n` elements (allocated once, when the group is built).
+    pub fn new(n: usize) -> Self {
+        Self {
+            internal: vec![[[0.0; 3]; 8]; n],
+            damping: vec![[[0.0; 3]; 8]; n],
+        }
+    }
+
+    /// The default for a group of `material` with `n` elements: buffers for every
+    /// material but linear elasticity.
+    fn default_for(material: &Material, n: usize) -> Option<Self> {
+        (!matches!(material, Material::Elastic(_))).then(|| Self::new(n))
+    }
+}
+
+/// The internal forces f_int(u) of every element of `groups` into `f_int` (and the
+/// stiffness-proportional damping forces β K0 v into `f_damp` for groups with β > 0),
+/// `settings(k)` giving group k's β, step and due elements. First, every group with
+/// [`ElementGroup::element_forces`] computes all its (due) elements in parallel into its
+/// buffers; then, colour by colour and group by group, the runs of the colour add their
+/// elements' forces to the nodes (computing them there for the other groups). The
+/// additions at every node are the same, in the same order, whatever the number of
+/// threads and whichever groups use the buffers.
+pub fn add_internal_forces<'a>(
+    groups: &mut [ElementGroup],
+    n_colours: usize,
+    u: &[[f64; 3]],
+    v: &[[f64; 3]],
+    settings: impl Fn(usize) -> ForceSettings<'a>,
+    f_int: &mut [[f64; 3]],
+    f_damp: &mut [[f64; 3]],
+) {
+    for (k, g) in groups.iter_mut().enumerate() {
+        g.compute_element_forces(u, v, settings(k));
+    }
+    for c in 0..n_colours {
+        for (k, g) in groups.iter_mut().enumerate() {
+            g.add_colour_forces(c, u, v, settings(k), f_int, f_damp);
+        }
+    }
 }
 
 /// Raw pointer made shareable across threads; every use writes disjoint indices
@@ -120,6 +180,29 @@ pub struct ForceSettings<'a> {
     pub dt: f64,
     /// The elements due at this step of a subcycled run (`None`: every element).
     pub due: Option<Due<'a>>,
+}
+
+/// The element kernel over group `$g`'s data for one pass (a macro rather than a method
+/// so that it borrows the group's fields one by one, beside its colouring runs).
+macro_rules! kernel {
+    ($g:expr, $u:expr, $v:expr, $beta:expr) => {{
+        let stride = $g.states.stride() * $g.integration.points();
+        let (old, new) = $g.states.split();
+        Kernel {
+            material: &$g.material,
+            conn: &$g.conn,
+            lengths: &$g.char_length,
+            geometry: &$g.geometry,
+            initial: $g.initial_strain.as_deref(),
+            reference: $g.reference.as_deref(),
+            old,
+            new: SharedMut(new.as_mut_ptr()),
+            stride,
+            beta: $beta,
+            u: $u,
+            v: $v,
+        }
+    }};
 }
 
 impl ElementGroup {
@@ -186,6 +269,7 @@ impl ElementGroup {
         let stride = material.state_len();
         let n_points = elements.len() * integration.points();
         let states = PointStates::new(stride, n_points, |_, s| material.init_state(s));
+        let element_forces = ElementForces::default_for(&material, elements.len());
         Ok(Self {
             region,
             name: mesh.region_names[region].clone(),
@@ -203,6 +287,7 @@ impl ElementGroup {
             initial_strain: None,
             reference: None,
             lanes: false,
+            element_forces,
         })
     }
 
@@ -227,15 +312,63 @@ impl ElementGroup {
         };
         let fixed = geo + std::mem::size_of::<[u32; 8]>() + 4 + 2 * 8;
         let extra = self.initial_strain.as_ref().map_or(0, |v| v.len() * 48)
-            + self.reference.as_ref().map_or(0, |v| v.len() * 192);
+            + self.reference.as_ref().map_or(0, |v| v.len() * 192)
+            + self.element_forces.as_ref().map_or(0, |b| {
+                (b.internal.len() + b.damping.len()) * std::mem::size_of::<[[f64; 3]; 8]>()
+            });
         fixed as f64 + (self.states.bytes() + extra) as f64 / self.len() as f64
+    }
+
+    /// Phase one of the two-phase pass ([`add_internal_forces`]): the forces of every
+    /// (due) element into [`ElementGroup::element_forces`], element by element in
+    /// parallel, material states to their pending buffer. Nothing for groups without
+    /// the buffers.
+    pub fn compute_element_forces(
+        &mut self,
+        u: &[[f64; 3]],
+        v: &[[f64; 3]],
+        settings: ForceSettings<'_>,
+    ) {
+        let Some(mut buffers) = self.element_forces.take() else {
+            return;
+        };
+        {
+            let beta = settings.beta;
+            let kernel = kernel!(self, u, v, beta);
+            let due = settings.due;
+            let dt = settings.dt;
+            // The damping buffer is written (and read) only when β > 0.
+            let damping = SharedMut(buffers.damping.as_mut_ptr());
+            buffers
+                .internal
+                .par_iter_mut()
+                .enumerate()
+                .with_min_len(4)
+                .for_each(|(le, fe)| {
+                    let dt = match due {
+                        Some(due) if !Due::at(due.step, due.level[le]) => return,
+                        Some(due) => dt * (1u64 << due.level[le]) as f64,
+                        None => dt,
+                    };
+                    let mut fd = [[0.0; 3]; 8];
+                    kernel.forces(le, dt, fe, &mut fd);
+                    if beta > 0.0 {
+                        // SAFETY: element le's entry, written by this iteration alone.
+                        unsafe { *damping.at(le) = fd };
+                    }
+                });
+        }
+        self.element_forces = Some(buffers);
     }
 
     /// Add the internal forces of the elements of colour `c` into `f_int` (and the
     /// stiffness-proportional damping forces into `f_damp` when β > 0). Elements of one
     /// colour share no node, so the parallel adds never touch the same node; each run of
-    /// one colouring block is added by one thread in the group's order.
-    pub fn add_colour_forces(
+    /// one colouring block is added by one thread in the group's order. A group with
+    /// [`ElementGroup::element_forces`] adds the forces computed by
+    /// [`ElementGroup::compute_element_forces`] (called first, with the same settings);
+    /// the others compute them here. Called through [`add_internal_forces`].
+    fn add_colour_forces(
         &mut self,
         c: usize,
         u: &[[f64; 3]],
@@ -250,134 +383,20 @@ impl ElementGroup {
         if block_range.is_empty() {
             return;
         }
-        let blocks = &self.blocks[block_range.clone()];
-        let stride = self.states.stride() * self.integration.points();
-        let (old, new) = self.states.split();
-        let new_ptr = SharedMut(new.as_mut_ptr());
         let f_ptr = SharedMut(f_int.as_mut_ptr());
         let d_ptr = SharedMut(f_damp.as_mut_ptr());
         let n_nodes = f_int.len();
         debug_assert_eq!(f_damp.len(), n_nodes);
-        let material = &self.material;
-        let conn = &self.conn;
-        let lengths = &self.char_length;
-        let geometry = &self.geometry;
-        let initial = self.initial_strain.as_deref();
-        let reference = self.reference.as_deref();
         let beta = settings.beta;
         let dt = settings.dt;
         let due = settings.due;
-        // Lane blocks: linear elastic, fully integrated, no initial strain (the material
-        // update is the elastic stress and the state is empty).
-        let lane_geometry = match (geometry, material, initial) {
-            (GroupGeometry::Full(g), Material::Elastic(e), None) if self.lanes => {
-                Some((g.as_slice(), *e))
-            }
-            _ => None,
-        };
-        let element_displacements = |le: usize| -> [[f64; 3]; 8] {
-            let nodes = &conn[le];
-            let mut ue: [[f64; 3]; 8] = std::array::from_fn(|a| u[nodes[a] as usize]);
-            if let Some(r) = reference {
-                subtract_reference(&mut ue, &r[le]);
-            }
-            ue
-        };
-        // Add element le's internal force `fe` (and its damping force) to the nodes.
-        let scatter = |le: usize, fe: &[[f64; 3]; 8]| {
-            let nodes = &conn[le];
-            let mut fd = [[0.0; 3]; 8];
-            if beta > 0.0 {
-                let ve: [[f64; 3]; 8] = std::array::from_fn(|a| v[nodes[a] as usize]);
-                if let GroupGeometry::Full(g) = geometry {
-                    damping_force_full(&g[le], material, &ve, beta, &mut fd);
-                }
-            }
-            for a in 0..8 {
-                let n = nodes[a] as usize;
-                debug_assert!(n < n_nodes);
-                // SAFETY: as in `element` below.
-                unsafe {
-                    let p = &mut *f_ptr.at(n);
-                    p[0] += fe[a][0];
-                    p[1] += fe[a][1];
-                    p[2] += fe[a][2];
-                    if beta > 0.0 {
-                        let d = &mut *d_ptr.at(n);
-                        d[0] += fd[a][0];
-                        d[1] += fd[a][1];
-                        d[2] += fd[a][2];
-                    }
-                }
-            }
-        };
-        let element = |le: usize, dt: f64| {
-            let nodes = &conn[le];
-            let mut ue: [[f64; 3]; 8] = std::array::from_fn(|a| u[nodes[a] as usize]);
-            if let Some(r) = reference {
-                subtract_reference(&mut ue, &r[le]);
-            }
-            let ve: [[f64; 3]; 8] = if beta > 0.0 {
-                std::array::from_fn(|a| v[nodes[a] as usize])
-            } else {
-                [[0.0; 3]; 8]
-            };
-            let ctx = PointContext {
-                char_length: lengths[le],
-                dt,
-            };
-            let old_s = &old[le * stride..(le + 1) * stride];
-            // SAFETY: each element owns the state slice [le*stride, (le+1)*stride).
-            let new_s = unsafe { std::slice::from_raw_parts_mut(new_ptr.at(le * stride), stride) };
-            let mut fe = [[0.0; 3]; 8];
-            let mut fd = [[0.0; 3]; 8];
-            match geometry {
-                GroupGeometry::Uniform(g) => {
-                    match initial {
-                        None => hex8_uniform::internal_force(
-                            &g[le], material, &ue, old_s, new_s, &ctx, &mut fe,
-                        ),
-                        Some(e0) => hex8_uniform::internal_force_with_initial_strain(
-                            &g[le],
-                            material,
-                            &ue,
-                            Some(&e0[le]),
-                            old_s,
-                            new_s,
-                            &ctx,
-                            &mut fe,
-                        ),
-                    };
-                    if beta > 0.0 {
-                        damping_force_uniform(&g[le], material, &ve, beta, &mut fd);
-                    }
-                }
-                GroupGeometry::Full(g) => {
-                    match initial {
-                        None => hex8_full::internal_force(
-                            &g[le], material, &ue, old_s, new_s, &ctx, &mut fe,
-                        ),
-                        Some(e0) => hex8_full::internal_force_with_initial_strain(
-                            &g[le],
-                            material,
-                            &ue,
-                            Some(&e0[8 * le..8 * le + 8]),
-                            old_s,
-                            new_s,
-                            &ctx,
-                            &mut fe,
-                        ),
-                    };
-                    if beta > 0.0 {
-                        damping_force_full(&g[le], material, &ve, beta, &mut fd);
-                    }
-                }
-            }
+        // Add element le's internal force `fe` and damping force `fd` to its nodes.
+        let add = |nodes: &[u32; 8], fe: &[[f64; 3]; 8], fd: &[[f64; 3]; 8]| {
             for a in 0..8 {
                 let n = nodes[a] as usize;
                 debug_assert!(n < n_nodes);
                 // SAFETY: no element of another run of this colour has node n (block
-                // colouring), and the elements of this run are added serially by this thread.
+                // colouring), and the elements of a run are added serially by one thread.
                 unsafe {
                     let p = &mut *f_ptr.at(n);
                     p[0] += fe[a][0];
@@ -392,31 +411,66 @@ impl ElementGroup {
                 }
             }
         };
-        if let Some(due) = due {
-            // Subcycled: only the due elements, each with its own period as its step; the
-            // runs keep their order, so the sums are those of the full pass restricted to
-            // the due elements.
-            let run_levels = &due.run_level[block_range];
-            blocks
-                .par_iter()
-                .zip(run_levels.par_iter())
-                .for_each(|(run, &min_level)| {
-                    if !Due::at(due.step, min_level) {
-                        return;
+        let blocks = &self.blocks[block_range.clone()];
+        let run_levels = due.map(|d| &d.run_level[block_range]);
+        // Whether element le is evaluated at this step, and with which step.
+        let due_dt = |le: usize| -> Option<f64> {
+            match due {
+                None => Some(dt),
+                Some(due) => {
+                    let l = due.level[le];
+                    Due::at(due.step, l).then(|| dt * (1u64 << l) as f64)
+                }
+            }
+        };
+        // Whether a run has any due element (subcycled: a run none of whose elements is
+        // due is skipped whole).
+        let run_due = |r: usize| -> bool {
+            match (due, run_levels) {
+                (Some(due), Some(levels)) => Due::at(due.step, levels[r]),
+                _ => true,
+            }
+        };
+        if let Some(buffers) = &self.element_forces {
+            let conn = &self.conn;
+            blocks.par_iter().enumerate().for_each(|(r, run)| {
+                if !run_due(r) {
+                    return;
+                }
+                for le in run.clone() {
+                    if due_dt(le).is_some() {
+                        add(&conn[le], &buffers.internal[le], &buffers.damping[le]);
                     }
-                    for le in run.clone() {
-                        let l = due.level[le];
-                        if Due::at(due.step, l) {
-                            element(le, dt * (1u64 << l) as f64);
-                        }
-                    }
-                });
+                }
+            });
             return;
         }
+        // Lane blocks: linear elastic, fully integrated, no initial strain (the material
+        // update is the elastic stress and the state is empty).
+        let lane_geometry = match (&self.geometry, &self.material, &self.initial_strain) {
+            (GroupGeometry::Full(g), Material::Elastic(e), None) if self.lanes && due.is_none() => {
+                Some((g.as_slice(), *e))
+            }
+            _ => None,
+        };
+        let kernel = kernel!(self, u, v, beta);
+        let element = |le: usize, dt: f64| {
+            let mut fe = [[0.0; 3]; 8];
+            let mut fd = [[0.0; 3]; 8];
+            kernel.forces(le, dt, &mut fe, &mut fd);
+            add(&kernel.conn[le], &fe, &fd);
+        };
         match lane_geometry {
-            None => blocks
-                .par_iter()
-                .for_each(|run| run.clone().for_each(|le| element(le, dt))),
+            None => blocks.par_iter().enumerate().for_each(|(r, run)| {
+                if !run_due(r) {
+                    return;
+                }
+                for le in run.clone() {
+                    if let Some(dt) = due_dt(le) {
+                        element(le, dt);
+                    }
+                }
+            }),
             // Whole lane blocks of a run in SIMD lanes, the rest element by element; the
             // forces are added in the group's order either way, so the sums are those of
             // the scalar path.
@@ -426,12 +480,14 @@ impl ElementGroup {
                     while le + LANES <= run.end {
                         let geo: [&FullGeometry; LANES] = std::array::from_fn(|l| &g[le + l]);
                         let ue = hex8_full_lanes::to_lanes(&std::array::from_fn(|l| {
-                            element_displacements(le + l)
+                            kernel.displacements(le + l)
                         }));
                         let fe =
                             hex8_full_lanes::elastic_internal_forces(&geo, e.lambda, e.mu, &ue);
                         for l in 0..LANES {
-                            scatter(le + l, &lanes::lane_of(&fe, l));
+                            let mut fd = [[0.0; 3]; 8];
+                            kernel.damping(le + l, &mut fd);
+                            add(&kernel.conn[le + l], &lanes::lane_of(&fe, l), &fd);
                         }
                         le += LANES;
                     }
@@ -710,6 +766,10 @@ impl ElementGroup {
                 .as_ref()
                 .map(|r| kept.iter().map(|&le| r[le]).collect()),
             lanes: self.lanes,
+            element_forces: self
+                .element_forces
+                .as_ref()
+                .map(|_| ElementForces::new(kept.len())),
             elements,
         }
     }
@@ -835,6 +895,113 @@ impl ElementGroup {
     /// Volume of integration point `gp` of element `le` (one-point: V; full: w det J).
     pub fn integration_point_volume(&self, le: usize, gp: usize) -> f64 {
         self.point_volume(le, gp)
+    }
+}
+
+/// One group's element kernel for one force pass: its data, the displacements and
+/// velocities, and the state buffers (the committed states read, each element writing
+/// only its own slice of the pending ones).
+struct Kernel<'k> {
+    material: &'k Material,
+    conn: &'k [[u32; 8]],
+    lengths: &'k [f64],
+    geometry: &'k GroupGeometry,
+    initial: Option<&'k [Voigt]>,
+    reference: Option<&'k [[[f64; 3]; 8]]>,
+    old: &'k [f64],
+    new: SharedMut<f64>,
+    /// State values per element.
+    stride: usize,
+    beta: f64,
+    u: &'k [[f64; 3]],
+    v: &'k [[f64; 3]],
+}
+
+impl Kernel<'_> {
+    /// Nodal displacements of element `le` (less its reference displacements).
+    #[inline(always)]
+    fn displacements(&self, le: usize) -> [[f64; 3]; 8] {
+        let nodes = &self.conn[le];
+        let mut ue: [[f64; 3]; 8] = std::array::from_fn(|a| self.u[nodes[a] as usize]);
+        if let Some(r) = self.reference {
+            subtract_reference(&mut ue, &r[le]);
+        }
+        ue
+    }
+
+    /// Damping force β K0 v of a fully integrated element `le` into `fd` (zero when
+    /// β = 0; the one-point elements' damping is computed in [`Kernel::forces`]).
+    #[inline(always)]
+    fn damping(&self, le: usize, fd: &mut [[f64; 3]; 8]) {
+        *fd = [[0.0; 3]; 8];
+        if self.beta > 0.0 {
+            if let GroupGeometry::Full(g) = self.geometry {
+                let nodes = &self.conn[le];
+                let ve: [[f64; 3]; 8] = std::array::from_fn(|a| self.v[nodes[a] as usize]);
+                damping_force_full(&g[le], self.material, &ve, self.beta, fd);
+            }
+        }
+    }
+
+    /// Internal force `fe` and damping force `fd` (zero when β = 0) of element `le` over
+    /// a step `dt`, its material states written to the pending buffer.
+    #[inline(always)]
+    fn forces(&self, le: usize, dt: f64, fe: &mut [[f64; 3]; 8], fd: &mut [[f64; 3]; 8]) {
+        let ue = self.displacements(le);
+        let ctx = PointContext {
+            char_length: self.lengths[le],
+            dt,
+        };
+        let stride = self.stride;
+        let old_s = &self.old[le * stride..(le + 1) * stride];
+        // SAFETY: each element owns the state slice [le*stride, (le+1)*stride), and
+        // every pass evaluates an element at most once.
+        let new_s = unsafe { std::slice::from_raw_parts_mut(self.new.at(le * stride), stride) };
+        *fe = [[0.0; 3]; 8];
+        *fd = [[0.0; 3]; 8];
+        let material = self.material;
+        match self.geometry {
+            GroupGeometry::Uniform(g) => {
+                match self.initial {
+                    None => {
+                        hex8_uniform::internal_force(&g[le], material, &ue, old_s, new_s, &ctx, fe)
+                    }
+                    Some(e0) => hex8_uniform::internal_force_with_initial_strain(
+                        &g[le],
+                        material,
+                        &ue,
+                        Some(&e0[le]),
+                        old_s,
+                        new_s,
+                        &ctx,
+                        fe,
+                    ),
+                };
+                if self.beta > 0.0 {
+                    let nodes = &self.conn[le];
+                    let ve: [[f64; 3]; 8] = std::array::from_fn(|a| self.v[nodes[a] as usize]);
+                    damping_force_uniform(&g[le], material, &ve, self.beta, fd);
+                }
+            }
+            GroupGeometry::Full(g) => {
+                match self.initial {
+                    None => {
+                        hex8_full::internal_force(&g[le], material, &ue, old_s, new_s, &ctx, fe)
+                    }
+                    Some(e0) => hex8_full::internal_force_with_initial_strain(
+                        &g[le],
+                        material,
+                        &ue,
+                        Some(&e0[8 * le..8 * le + 8]),
+                        old_s,
+                        new_s,
+                        &ctx,
+                        fe,
+                    ),
+                };
+                self.damping(le, fd);
+            }
+        }
     }
 }
 

@@ -38,7 +38,7 @@
 use rayon::prelude::*;
 
 use crate::contact::ContactStepInput;
-use crate::element::groups::ForceSettings;
+use crate::element::groups::{add_internal_forces, ForceSettings};
 use crate::error::{DcfmError, Result};
 use crate::model::Model;
 use crate::stage::energy::{Energies, EnergyParts};
@@ -317,29 +317,21 @@ impl Simulation {
                 .for_each(|f| *f = [0.0; 3]);
         }
         let sub = self.subcycling.as_ref();
-        for c in 0..self.model.n_colours {
-            for (k, (g, &beta)) in self
-                .model
-                .groups
-                .iter_mut()
-                .zip(&self.group_beta)
-                .enumerate()
-            {
-                let settings = ForceSettings {
-                    beta,
-                    dt: self.dt,
-                    due: sub.map(|s| s.due(k, self.step)),
-                };
-                g.add_colour_forces(
-                    c,
-                    &self.u,
-                    &self.v,
-                    settings,
-                    &mut self.f_int,
-                    &mut self.f_damp,
-                );
-            }
-        }
+        let group_beta = &self.group_beta;
+        let (dt, step) = (self.dt, self.step);
+        add_internal_forces(
+            &mut self.model.groups,
+            self.model.n_colours,
+            &self.u,
+            &self.v,
+            |k| ForceSettings {
+                beta: group_beta[k],
+                dt,
+                due: sub.map(|s| s.due(k, step)),
+            },
+            &mut self.f_int,
+            &mut self.f_damp,
+        );
         let model = &mut self.model;
         if let Some(anchors) = model.anchors.as_mut() {
             anchors.add_internal_forces(&model.mesh, &self.u, &mut self.f_int);

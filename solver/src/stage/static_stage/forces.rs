@@ -7,7 +7,7 @@
 //! carries (FLAC's "ratio" in the 2-norm; with an initial stress, f_int ≠ 0 at u = 0).
 
 use super::dofs::{DofMap, NO_EQ};
-use crate::element::groups::ForceSettings;
+use crate::element::groups::{add_internal_forces, ForceSettings};
 use crate::model::Model;
 
 /// Scratch buffers for force evaluations (allocated once per stage).
@@ -37,18 +37,15 @@ impl ForceBuffers {
             dt: f64::MAX,
             due: None,
         };
-        for c in 0..model.n_colours {
-            for g in model.groups.iter_mut() {
-                g.add_colour_forces(
-                    c,
-                    u,
-                    &self.zero_v,
-                    settings,
-                    &mut self.f_int,
-                    &mut self.f_damp,
-                );
-            }
-        }
+        add_internal_forces(
+            &mut model.groups,
+            model.n_colours,
+            u,
+            &self.zero_v,
+            |_| settings,
+            &mut self.f_int,
+            &mut self.f_damp,
+        );
     }
 }
 

@@ -323,7 +323,7 @@ impl ElementGroup {
     /// (due) element into [`ElementGroup::element_forces`], element by element in
     /// parallel, material states to their pending buffer. Nothing for groups without
     /// the buffers.
-    pub fn compute_element_forces(
+    fn compute_element_forces(
         &mut self,
         u: &[[f64; 3]],
         v: &[[f64; 3]],

@@ -182,6 +182,21 @@ pub struct ForceSettings<'a> {
     pub due: Option<Due<'a>>,
 }
 
+impl ForceSettings<'_> {
+    /// The step element `le` of the group is evaluated with at this step: Δt without
+    /// subcycling, 2^m_e Δt when it is due, `None` when it is not.
+    #[inline(always)]
+    fn element_dt(&self, le: usize) -> Option<f64> {
+        match self.due {
+            None => Some(self.dt),
+            Some(due) => {
+                let l = due.level[le];
+                Due::at(due.step, l).then(|| self.dt * (1u64 << l) as f64)
+            }
+        }
+    }
+}
+
 /// The element kernel over group `$g`'s data for one pass (a macro rather than a method
 /// so that it borrows the group's fields one by one, beside its colouring runs).
 macro_rules! kernel {
@@ -335,8 +350,6 @@ impl ElementGroup {
         {
             let beta = settings.beta;
             let kernel = kernel!(self, u, v, beta);
-            let due = settings.due;
-            let dt = settings.dt;
             // The damping buffer is written (and read) only when β > 0.
             let damping = SharedMut(buffers.damping.as_mut_ptr());
             buffers
@@ -345,10 +358,8 @@ impl ElementGroup {
                 .enumerate()
                 .with_min_len(4)
                 .for_each(|(le, fe)| {
-                    let dt = match due {
-                        Some(due) if !Due::at(due.step, due.level[le]) => return,
-                        Some(due) => dt * (1u64 << due.level[le]) as f64,
-                        None => dt,
+                    let Some(dt) = settings.element_dt(le) else {
+                        return;
                     };
                     let mut fd = [[0.0; 3]; 8];
                     kernel.forces(le, dt, fe, &mut fd);
@@ -413,16 +424,6 @@ impl ElementGroup {
         };
         let blocks = &self.blocks[block_range.clone()];
         let run_levels = due.map(|d| &d.run_level[block_range]);
-        // Whether element le is evaluated at this step, and with which step.
-        let due_dt = |le: usize| -> Option<f64> {
-            match due {
-                None => Some(dt),
-                Some(due) => {
-                    let l = due.level[le];
-                    Due::at(due.step, l).then(|| dt * (1u64 << l) as f64)
-                }
-            }
-        };
         // Whether a run has any due element (subcycled: a run none of whose elements is
         // due is skipped whole).
         let run_due = |r: usize| -> bool {
@@ -438,7 +439,7 @@ impl ElementGroup {
                     return;
                 }
                 for le in run.clone() {
-                    if due_dt(le).is_some() {
+                    if settings.element_dt(le).is_some() {
                         add(&conn[le], &buffers.internal[le], &buffers.damping[le]);
                     }
                 }
@@ -466,7 +467,7 @@ impl ElementGroup {
                     return;
                 }
                 for le in run.clone() {
-                    if let Some(dt) = due_dt(le) {
+                    if let Some(dt) = settings.element_dt(le) {
                         element(le, dt);
                     }
                 }

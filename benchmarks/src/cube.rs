@@ -26,7 +26,22 @@ pub enum CubeMaterial {
     /// The same model with a 50× stronger initial velocity: the base layers yield and
     /// damage, so most updates take the plastic return.
     PlasticDamageDamaging,
+    /// Damage in one block, the mix of the Yingxiuwan case (issue #11 item 4: the
+    /// damaging work concentrated in a few blocks): a linear elastic host with the case's
+    /// integration (the rock mass, which stays elastic) around a weak core — the central
+    /// `max(1, n/4)`³ elements, ≈ 1.6 % of the 40³ cube, region [`WEAK_REGION`], always
+    /// fully integrated (the concrete) — of the plastic-damage model with [`WEAK_FACTOR`]
+    /// times W10's strengths and fracture energies, at the elastic regime's velocity: the
+    /// core cracks throughout, the host carries the waves.
+    PlasticDamageLocalised,
 }
+
+/// Region of the weak core of [`CubeMaterial::PlasticDamageLocalised`].
+pub const WEAK_REGION: &str = "weak_core";
+
+/// The weak core's strengths and fracture energies over the host's: f_t0 0.145 MPa, well
+/// below the ≈ 0.5 MPa of the shear wave the initial velocity sends through it.
+pub const WEAK_FACTOR: f64 = 0.05;
 
 impl CubeMaterial {
     /// Suffix of the case name.
@@ -35,6 +50,7 @@ impl CubeMaterial {
             CubeMaterial::Elastic => "",
             CubeMaterial::PlasticDamageElastic => "_pd_elastic",
             CubeMaterial::PlasticDamageDamaging => "_pd_damaging",
+            CubeMaterial::PlasticDamageLocalised => "_pd_localised",
         }
     }
 }
@@ -141,22 +157,28 @@ impl CubeSpec {
         let mut mesh = BoxMeshSpec::single(REGION, [0.0; 3], [self.edge; 3], [n, n, n])
             .build("benchmark cube")?;
         dcfm::mesh::outer_faces::add_bounding_box_face_sets(&mut mesh);
-        let elastic = Elastic::new(REGION, 20e9, 0.25, 2700.0)?;
-        let material = match self.material {
-            CubeMaterial::Elastic => Material::Elastic(elastic),
-            _ => Material::PlasticDamage(Box::new(PlasticDamage::new(
-                REGION,
-                elastic,
-                &PlasticDamageParams::from_strengths(2.9e6, 13e6, 24.1e6, 200.0, 1e4),
-            )?)),
+        let host = match self.material {
+            CubeMaterial::PlasticDamageLocalised => CubeMaterial::Elastic,
+            m => m,
         };
-        let setup = RegionSetup {
+        let material = Self::material_of(REGION, host, 1.0)?;
+        let mut setups = vec![RegionSetup {
             region: REGION.to_string(),
             material,
             integration: self.integration,
             hourglass: self.hourglass,
-        };
-        let mut model = Model::new(mesh, std::slice::from_ref(&setup), "benchmark cube")?;
+        }];
+        if self.material == CubeMaterial::PlasticDamageLocalised {
+            Self::mark_weak_core(&mut mesh, n, self.edge);
+            setups.push(RegionSetup {
+                region: WEAK_REGION.to_string(),
+                material: Self::material_of(WEAK_REGION, self.material, WEAK_FACTOR)?,
+                integration: Integration::Full,
+                ..setups[0].clone()
+            });
+        }
+        let setup = &setups[0];
+        let mut model = Model::new(mesh, &setups, "benchmark cube")?;
         if self.boundaries {
             Self::add_boundaries(&mut model, &setup.material)?;
         } else {
@@ -166,6 +188,47 @@ impl CubeSpec {
         let all: Vec<u32> = (0..model.mesh.n_nodes() as u32).collect();
         model.initial_velocity.push((all, self.velocity));
         Ok(model)
+    }
+
+    /// The cube's rock (E 20 GPa, ν 0.25, ρ 2700 kg/m³) under `material`, its strengths and
+    /// fracture energies (W10's concrete: f_t0 2.9, f_c0 13, f_c 24.1 MPa, G_t 200 N/m,
+    /// G_c 10 kN/m) times `strength_factor`.
+    fn material_of(
+        region: &str,
+        material: CubeMaterial,
+        strength_factor: f64,
+    ) -> dcfm::Result<Material> {
+        let elastic = Elastic::new(region, 20e9, 0.25, 2700.0)?;
+        if material == CubeMaterial::Elastic {
+            return Ok(Material::Elastic(elastic));
+        }
+        let [ft0, fc0, fc, gt, gc] = [2.9e6, 13e6, 24.1e6, 200.0, 1e4].map(|x| strength_factor * x);
+        Ok(Material::PlasticDamage(Box::new(PlasticDamage::new(
+            region,
+            elastic,
+            &PlasticDamageParams::from_strengths(ft0, fc0, fc, gt, gc),
+        )?)))
+    }
+
+    /// Move the central `max(1, n/4)`³ elements of the n³ cube of edge `edge` to the region
+    /// [`WEAK_REGION`] (by their centroids' cell indices).
+    fn mark_weak_core(mesh: &mut dcfm::mesh::Mesh, n: usize, edge: f64) {
+        let m = (n / 4).max(1);
+        let first = (n - m) / 2;
+        let core = first..first + m;
+        let weak = mesh.region_names.len() as u16;
+        mesh.region_names.push(WEAK_REGION.to_string());
+        let h = edge / n as f64;
+        for e in 0..mesh.n_elements() {
+            let x = mesh.element_coords(e);
+            let inside = (0..3).all(|c| {
+                let centroid = x.iter().map(|p| p[c]).sum::<f64>() / 8.0;
+                core.contains(&((centroid / h).floor() as usize))
+            });
+            if inside {
+                mesh.element_region[e] = weak;
+            }
+        }
     }
 
     /// The boundaries of `cases/seismic_rock_box.toml` on the cube: a viscous-spring base

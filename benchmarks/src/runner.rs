@@ -74,6 +74,7 @@ impl RunConfig {
             plastic_damage: vec![
                 CubeMaterial::PlasticDamageElastic,
                 CubeMaterial::PlasticDamageDamaging,
+                CubeMaterial::PlasticDamageLocalised,
             ],
             plastic_damage_integrations: vec![Integration::Full, Integration::OnePoint],
             large_one_point_sizes: vec![100],

@@ -120,6 +120,8 @@ fn one_point_plastic_damage_and_large_cube_rows() {
         "cube40_one_point_pd_elastic",
         "cube40_one_point_pd_damaging",
         "cube40_full_pd_elastic",
+        "cube40_full_pd_localised",
+        "cube40_one_point_pd_localised",
         "cube100_one_point",
     ] {
         assert!(

@@ -230,14 +230,27 @@ fn main() -> ExitCode {
                     say!("warning   dcfm run will refuse it: {e}");
                 }
                 match dcfm_app::estimate::estimate_wall_time(c) {
-                    Ok(w) => say!(
-                        "estimate  {} wall time for {} steps ({} element-updates/s timed over {} steps on {} threads here; static stage and outputs not included)",
-                        duration(w.wall_s),
-                        engineering(w.steps),
-                        engineering(w.element_updates_per_s.round()),
-                        w.steps_timed,
-                        w.threads
-                    ),
+                    Ok(w) => {
+                        if let Some(s) = &w.subcycling {
+                            say!(
+                                "subcycle  max_level {}: elements evaluated every 1, 2, 4, … steps: {:?}; nodes stepping at Δt, 2Δt, …: {:?}; {:.3} of the element evaluations per step ({} saved per step)",
+                                s.max_level,
+                                s.elements_per_level,
+                                s.nodes_per_level,
+                                s.element_update_fraction,
+                                s.element_updates_saved_per_step.round()
+                            );
+                        }
+                        say!(
+                            "estimate  {} wall time for {} steps ({} element-updates/s{} timed over {} steps on {} threads here; static stage and outputs not included)",
+                            duration(w.wall_s),
+                            engineering(w.steps),
+                            engineering(w.element_updates_per_s.round()),
+                            if w.subcycling.is_some() { " single-step equivalent" } else { "" },
+                            w.steps_timed,
+                            w.threads
+                        )
+                    }
                     Err(e) => say!("estimate  no wall time: the timed steps failed ({e})"),
                 }
                 ExitCode::SUCCESS

@@ -270,3 +270,23 @@ fn anchor_hosts_stay_on_the_finest_step() {
     );
     let _ = std::fs::remove_dir_all(&dir);
 }
+
+/// `dcfm check`'s wall-time estimate of a subcycled case is timed subcycled, over whole
+/// cycles, and reports the levels the run will use.
+#[test]
+fn the_estimate_of_a_subcycled_case_runs_subcycled_over_whole_cycles() {
+    use dcfm_app::estimate::estimate_wall_time;
+    let case = graded_bar("{ max_level = 3 }", 8, "0.02");
+    let w = estimate_wall_time(parse_case(&case, "g.toml", Path::new(".")).unwrap()).unwrap();
+    let s = w.subcycling.expect("levels in the estimate");
+    assert_eq!(s.elements_per_level, vec![5, 3, 0, 0], "{s:?}");
+    // The node levels reach 1: a cycle of 2 steps, timed whole.
+    assert!(
+        w.steps_timed >= 3 && w.steps_timed % 2 == 0,
+        "{}",
+        w.steps_timed
+    );
+    let off = graded_bar("\"off\"", 8, "0.02");
+    let w = estimate_wall_time(parse_case(&off, "g.toml", Path::new(".")).unwrap()).unwrap();
+    assert!(w.subcycling.is_none());
+}

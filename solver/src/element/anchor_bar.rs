@@ -769,23 +769,19 @@ impl AnchorBars {
     /// Append the history values to `row`, in the order of
     /// [`AnchorBars::history_names`].
     pub fn history_values(&self, layout: &AnchorHistoryLayout, row: &mut Vec<f64>) {
-        for g in 0..layout.groups as u32 {
-            let mut max = 0.0f64;
-            let mut yielded = 0usize;
-            for (k, _) in layout
-                .segment_group
-                .iter()
-                .enumerate()
-                .filter(|(_, &sg)| sg == g)
+        // One pass over the segments, each adding to its group's pair (max, yielded) in
+        // place in the row (a pass per group cost groups × segments per history row).
+        let base = row.len();
+        row.resize(base + 2 * layout.groups, 0.0);
+        let pairs = &mut row[base..];
+        for (k, &g) in layout.segment_group.iter().enumerate() {
+            let pair = &mut pairs[2 * g as usize..2 * g as usize + 2];
+            pair[0] = pair[0].max(self.force[k]);
+            if self.plastic[k] != 0.0
+                && self.force[k].abs() >= layout.segment_yield[k] * (1.0 - 1e-12)
             {
-                max = max.max(self.force[k]);
-                yielded += usize::from(
-                    self.plastic[k] != 0.0
-                        && self.force[k].abs() >= layout.segment_yield[k] * (1.0 - 1e-12),
-                );
+                pair[1] += 1.0;
             }
-            row.push(max);
-            row.push(yielded as f64);
         }
     }
 

@@ -636,16 +636,16 @@ impl ElementGroup {
             let (mut et, mut ec) = (0.0, 0.0);
             for gp in 0..np {
                 let p = le * np + gp;
-                if let Some(d) = self
+                if let Some((dt, dc)) = self
                     .material
-                    .damage_state(&state[p * stride..(p + 1) * stride])
+                    .tensile_and_compressive_damage(&state[p * stride..(p + 1) * stride])
                 {
                     let pv = self.point_volume(le, gp);
                     if per_element {
-                        et += d.dt * pv / self.volume[le];
-                        ec += d.dc * pv / self.volume[le];
+                        et += dt * pv / self.volume[le];
+                        ec += dc * pv / self.volume[le];
                     } else {
-                        add(d.dt, d.dc, pv);
+                        add(dt, dc, pv);
                     }
                 }
             }

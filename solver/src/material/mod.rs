@@ -126,6 +126,19 @@ impl Material {
         matches!(self, Material::PlasticDamage(_))
     }
 
+    /// (D_t, D_c) of a point state (eq. 24; `None` for models without damage): the two
+    /// values of [`Material::damage_state`] that the damaged volume needs, without its
+    /// other fields.
+    #[inline]
+    pub fn tensile_and_compressive_damage(&self, state: &[f64]) -> Option<(f64, f64)> {
+        match self {
+            Material::Elastic(_) => None,
+            Material::PlasticDamage(p) => {
+                Some((p.tensile_damage(state), p.compressive_damage(state)))
+            }
+        }
+    }
+
     /// Damage variables of a point state (`None` for models without damage).
     pub fn damage_state(&self, state: &[f64]) -> Option<DamageState> {
         match self {

@@ -2,6 +2,7 @@
 //!
 //! - [`cube`]: the structured elastic cubes every benchmark times;
 //! - [`runner`]: the whole-run throughput runner behind the `throughput` binary;
+//! - [`case_run`]: whole runs of a case file as records (the `case_run` binary);
 //! - [`record`]: one JSON record per timed configuration;
 //! - [`history`]: the append-only `benchmarks/history.jsonl` of those records;
 //! - [`static_solve`]: the static stage's sparse direct solve of an n³ cube (issue #7);
@@ -13,6 +14,7 @@
 //! - [`memory`]: peak resident memory per case;
 //! - [`error`]: the runner's error type.
 
+pub mod case_run;
 pub mod cputime;
 pub mod cube;
 pub mod error;

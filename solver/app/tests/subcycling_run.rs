@@ -282,7 +282,7 @@ fn the_estimate_of_a_subcycled_case_runs_subcycled_over_whole_cycles() {
     assert_eq!(s.elements_per_level, vec![5, 3, 0, 0], "{s:?}");
     // The node levels reach 1: a cycle of 2 steps, timed whole.
     assert!(
-        w.steps_timed >= 3 && w.steps_timed % 2 == 0,
+        w.steps_timed >= 3 && w.steps_timed.is_multiple_of(2),
         "{}",
         w.steps_timed
     );

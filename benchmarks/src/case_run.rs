@@ -98,12 +98,7 @@ pub fn run_case_timed(
         ));
     }
     let commit = git::commit_label(&history::workspace_root());
-    let cpus = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let profile = if cfg!(debug_assertions) {
-        "debug"
-    } else {
-        "release"
-    };
+    let host = machine::Host::here();
     let mut records = Vec::new();
     for &threads in &config.threads {
         let out = config
@@ -146,9 +141,9 @@ pub fn run_case_timed(
             dt_s: summary.dt,
             commit: commit.clone(),
             timestamp: timestamp::utc_now(),
-            cpus,
-            machine_cpus: machine::machine_cpus().filter(|&n| n > cpus),
-            cpu_model: machine::cpu_model(),
+            cpus: host.cpus,
+            machine_cpus: host.machine_cpus,
+            cpu_model: host.cpu_model.clone(),
             // The CPU time covers the whole call (checkpoint read and case build included);
             // the wall time of the summary starts with the run driver.
             cpu_share: cpu_s.map(|c| c / (wall_s * threads as f64)),
@@ -158,7 +153,7 @@ pub fn run_case_timed(
             } else {
                 "case".to_string()
             },
-            profile: profile.to_string(),
+            profile: host.profile.to_string(),
             peak_rss_bytes: memory::peak_rss_bytes(),
             peak_rss_reset: Some(reset),
             static_solve: None,

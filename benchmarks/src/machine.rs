@@ -3,6 +3,36 @@
 //! confined to two cores of a larger machine (`taskset -c 0,1`) is not read as a run on
 //! the 2-core development machine.
 
+/// The machine fields of a record, read once per run.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Host {
+    /// CPUs this process may run on.
+    pub cpus: usize,
+    /// The machine's logical CPUs, when more than `cpus`.
+    pub machine_cpus: Option<usize>,
+    /// See [`cpu_model`].
+    pub cpu_model: Option<String>,
+    /// `"release"` or `"debug"`: how this binary was built.
+    pub profile: &'static str,
+}
+
+impl Host {
+    /// This machine and binary.
+    pub fn here() -> Self {
+        let cpus = std::thread::available_parallelism().map_or(1, |n| n.get());
+        Self {
+            cpus,
+            machine_cpus: machine_cpus().filter(|&n| n > cpus),
+            cpu_model: cpu_model(),
+            profile: if cfg!(debug_assertions) {
+                "debug"
+            } else {
+                "release"
+            },
+        }
+    }
+}
+
 /// The first `model name` of `/proc/cpuinfo` (x86 Linux), `None` elsewhere.
 pub fn cpu_model() -> Option<String> {
     let info = std::fs::read_to_string("/proc/cpuinfo").ok()?;

@@ -285,14 +285,12 @@ pub fn run_with_notes(
             None
         }
     };
-    let cpus = std::thread::available_parallelism().map_or(1, |n| n.get());
-    let machine_cpus = crate::machine::machine_cpus().filter(|&n| n > cpus);
-    let cpu_model = crate::machine::cpu_model();
-    let profile = if cfg!(debug_assertions) {
-        "debug"
-    } else {
-        "release"
-    };
+    let crate::machine::Host {
+        cpus,
+        machine_cpus,
+        cpu_model,
+        profile,
+    } = crate::machine::Host::here();
     let mut records = Vec::new();
     for spec in cases {
         let reset = memory::reset_peak_rss();

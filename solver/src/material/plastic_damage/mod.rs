@@ -38,7 +38,7 @@ pub use recovery::Recovery;
 use crate::error::{DcfmError, Result};
 use crate::material::{Elastic, PointContext, Voigt};
 use potential::Potential;
-use principal::{principal_values, Spectral};
+use principal::{definiteness, principal_values, Definiteness, Spectral};
 use return_mapping::LocalProblem;
 use yield_surface::{invariants, YieldSurface};
 
@@ -63,6 +63,20 @@ mod slot {
     pub const LEN: usize = 17;
 }
 
+/// Margin below zero, relative to c̄_c, of the yield bound under which
+/// [`PlasticDamage::virgin_elastic`] takes a never-yielded point as elastic: far above the
+/// rounding of F (≈ 1e-16 of the stress), far below any physical distance to the surface.
+const VIRGIN_MARGIN: f64 = 1e-9;
+
+/// β and the bracket limit (1 − α)(1 − [`VIRGIN_MARGIN`]) c̄_c of eq. (25) for the
+/// effective cohesions `ct`, `cc` of a never-yielded point.
+fn virgin_bound(surface: &YieldSurface, ct: f64, cc: f64) -> (f64, f64) {
+    (
+        surface.beta(ct, cc),
+        (1.0 - surface.alpha) * (1.0 - VIRGIN_MARGIN) * cc,
+    )
+}
+
 /// Sub-step counts tried in turn when a return does not converge.
 const SUBSTEPS: [usize; 4] = [1, 4, 16, 64];
 
@@ -79,6 +93,10 @@ pub struct PlasticDamage {
     /// [`SofteningLaw::for_length_with`].
     release: [(f64, f64); 2],
     tol: f64,
+    /// (β, (1 − α)(1 − [`VIRGIN_MARGIN`]) c̄_c) at y_t = y_c = 0 under the plastic
+    /// regularisation (element laws with the material's strengths) for
+    /// [`Self::virgin_elastic`]; `None` under the total one (per element length).
+    virgin_bound: Option<(f64, f64)>,
 }
 
 /// Internal variables advanced by one return.
@@ -105,14 +123,24 @@ impl PlasticDamage {
             let we = law.released_elastic_energy(elastic.young);
             (we, we + law.min_softening_energy(elastic.young))
         });
+        let surface = YieldSurface {
+            alpha: constants.alpha,
+            gamma: constants.gamma,
+        };
+        let virgin_bound = match constants.regularisation {
+            Regularisation::Plastic => Some(virgin_bound(
+                &surface,
+                constants.tension.f0,
+                constants.compression.f0,
+            )),
+            Regularisation::Total => None,
+        };
         Ok(Self {
             name: name.to_string(),
+            virgin_bound,
             elastic,
             release,
-            surface: YieldSurface {
-                alpha: constants.alpha,
-                gamma: constants.gamma,
-            },
+            surface,
             potential: Potential {
                 tan_psi: constants.tan_psi,
                 hyper: constants.hyper,
@@ -214,6 +242,8 @@ impl PlasticDamage {
             pb.compression.effective(st.y_c),
         );
         if self.surface.surely_inside(i1, q, ct, cc)
+            || (definiteness(&trial) == Definiteness::NonPositive
+                && self.surface.surely_inside_compressed(i1, q, ct, cc))
             || pb.yield_value(&principal_values(&trial), st.y_t, st.y_c) <= 0.0
         {
             return (*st, true);
@@ -292,6 +322,23 @@ impl PlasticDamage {
         }
         debug_assert!(ctx.char_length > 0.0, "characteristic length must be > 0");
         let l = ctx.char_length.max(1e-12);
+        if old[slot::Y_T] == 0.0 && old[slot::Y_C] == 0.0 {
+            if let Some(sig) = self.virgin_elastic(strain, old, new, l) {
+                return sig;
+            }
+        }
+        self.general_update(strain, old, new, ctx.dt, l)
+    }
+
+    /// [`Self::update`] by the return mapping (no shortcut) at characteristic length `l`.
+    fn general_update(
+        &self,
+        strain: &Voigt,
+        old: &[f64],
+        new: &mut [f64],
+        dt: f64,
+        l: f64,
+    ) -> Voigt {
         let pb = self.problem(l);
         let start = Internal {
             plastic: voigt(&old[slot::PLASTIC..]),
@@ -303,8 +350,8 @@ impl PlasticDamage {
 
         // Duvaut–Lions: x' = (x_n − x_∞)/η ⇒ x_{n+1} = x_n + w (x_∞ − x_n), w = Δt/(η + Δt).
         if self.constants.viscosity > 0.0 {
-            let w = if ctx.dt > 0.0 {
-                ctx.dt / (self.constants.viscosity + ctx.dt)
+            let w = if dt > 0.0 {
+                dt / (self.constants.viscosity + dt)
             } else {
                 0.0
             };
@@ -345,6 +392,53 @@ impl PlasticDamage {
             old[slot::DISSIPATED] + work - (psi1 - psi0)
         };
         sig
+    }
+
+    /// The update of a point that has never yielded (y_t = y_c = 0, hence D = 0) and whose
+    /// trial stress is inside the initial surface by a margin ([`VIRGIN_MARGIN`] of c̄_c),
+    /// from the invariant bound of [`YieldSurface::surely_inside`]: the state is the old
+    /// one at the new strain and σ = σ̄ = E₀ : (ε − εᵖ) (eqs. 23–24 with D = 0), without
+    /// the local problem, the sub-step loop and the second stress evaluation of the general
+    /// path. Bit for bit what that path gives — for an elastic trial it keeps the start
+    /// state (viscosity moves nothing), D = D_c(0) = 0 and (1 − 0) σ̄ = σ̄ under both recovery
+    /// rules — and the margin makes sure that path would find the trial elastic too (its
+    /// trial strain ε₀ + 1·(ε − ε₀) may differ from ε by rounding). `None`: take the
+    /// general path. Most points of a large model take this one in most steps.
+    #[inline]
+    fn virgin_elastic(
+        &self,
+        strain: &Voigt,
+        old: &[f64],
+        new: &mut [f64],
+        l: f64,
+    ) -> Option<Voigt> {
+        let eff = self
+            .elastic
+            .stress(&sub(strain, &voigt(&old[slot::PLASTIC..])));
+        let (beta, limit) = self.virgin_bound.unwrap_or_else(|| {
+            let (t, c) = self.element_laws(l);
+            virgin_bound(&self.surface, t.law.f0, c.law.f0)
+        });
+        // F ≤ −margin c̄_c ⇔ the bracket of eq. (25) ≤ (1 − α)(1 − margin) c̄_c, with
+        // σ̂_max ≤ Ī₁/3 + (2/3)√(3J̄₂) (F does not decrease with σ̂_max when β ≥ 0). A
+        // decision with a margin: products instead of the quotients of `invariants`.
+        const THIRD: f64 = 1.0 / 3.0;
+        let i1 = eff[0] + eff[1] + eff[2];
+        let m = i1 * THIRD;
+        let (a, b, c) = (eff[0] - m, eff[1] - m, eff[2] - m);
+        let ss =
+            a * a + b * b + c * c + 2.0 * (eff[3] * eff[3] + eff[4] * eff[4] + eff[5] * eff[5]);
+        let q = (1.5 * ss).sqrt();
+        let smax = m + 2.0 * THIRD * q;
+        let bracket = self.surface.alpha * i1 + q + beta * smax.max(0.0)
+            - self.surface.gamma * (-smax).max(0.0);
+        if !(beta >= 0.0 && bracket <= limit) {
+            return None;
+        }
+        new.copy_from_slice(old);
+        new[slot::STRAIN..slot::STRAIN + 6].copy_from_slice(strain);
+        new[slot::DAMAGE] = 0.0;
+        Some(eff)
     }
 
     /// Nominal stress σ and the D of eq. (24) for effective stress `eff` and hardening

@@ -39,6 +39,42 @@ pub fn principal_values(s: &Voigt) -> [f64; 3] {
     [hi, 3.0 * q - hi - lo, lo]
 }
 
+/// Signs of the principal values, known without computing them ([`definiteness`]).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Definiteness {
+    /// Every principal value ≥ 0.
+    NonNegative,
+    /// Every principal value ≤ 0.
+    NonPositive,
+    /// Some of each sign (or too close to zero to tell from the invariants).
+    Indefinite,
+}
+
+/// Signs of the principal values of a stress-like Voigt vector from its invariants
+/// I₁ = tr A, I₂ = ½[(tr A)² − tr A²], I₃ = det A. The characteristic polynomial
+/// λ³ − I₁λ² + I₂λ − I₃ of a symmetric matrix has only real roots, so by Descartes' rule of
+/// signs they are all ≤ 0 exactly when I₁ ≤ 0, I₂ ≥ 0 and I₃ ≤ 0, and all ≥ 0 exactly
+/// when I₁, I₂, I₃ ≥ 0. No square root, no trigonometry. Rounding can only misclassify a
+/// tensor whose I₂ or I₃ is within rounding of zero, i.e. one whose values of the other
+/// sign are themselves within rounding of zero.
+#[inline]
+pub fn definiteness(s: &Voigt) -> Definiteness {
+    let (d, e, f) = (s[3], s[4], s[5]);
+    let i1 = s[0] + s[1] + s[2];
+    let i2 = s[0] * s[1] + s[1] * s[2] + s[2] * s[0] - d * d - e * e - f * f;
+    if i2 < 0.0 {
+        return Definiteness::Indefinite;
+    }
+    let i3 = s[0] * (s[1] * s[2] - e * e) - d * (d * s[2] - e * f) + f * (d * e - s[1] * f);
+    if i1 <= 0.0 && i3 <= 0.0 {
+        Definiteness::NonPositive
+    } else if i1 >= 0.0 && i3 >= 0.0 {
+        Definiteness::NonNegative
+    } else {
+        Definiteness::Indefinite
+    }
+}
+
 /// Principal values (descending) and the matching unit eigenvectors (columns).
 #[derive(Clone, Copy, Debug)]
 pub struct Spectral {
@@ -291,6 +327,78 @@ mod tests {
                 assert!(res <= 1e-12 * scale, "{s:?}: residual of pair {i}: {res:e}");
             }
         }
+    }
+
+    #[test]
+    fn definiteness_matches_the_signs_of_the_principal_values() {
+        use nalgebra::{Rotation3, Unit, Vector3};
+        // Every sign pattern, with zero and repeated values, in rotated frames.
+        let sets: [[f64; 3]; 10] = [
+            [-1.0, -2.0, -3.0],
+            [0.0, -2.0, -2.0],
+            [0.0, 0.0, -5.0],
+            [1.0, 2.0, 3.0],
+            [4.0, 0.0, 0.0],
+            [1.0, -1.0, 0.0],
+            [3.0, -0.2, -4.0],
+            [0.3, 2.0, -1e-3],
+            [-0.3, -2.0, 1e-3],
+            [2.0, 2.0, -2.0],
+        ];
+        let axes = [
+            Vector3::x_axis(),
+            Unit::new_normalize(Vector3::new(1.0, 2.0, -0.5)),
+            Unit::new_normalize(Vector3::new(-0.3, 0.1, 0.9)),
+        ];
+        for (n, v) in sets.iter().enumerate() {
+            let want = if v.iter().all(|&x| x <= 0.0) {
+                Definiteness::NonPositive
+            } else if v.iter().all(|&x| x >= 0.0) {
+                Definiteness::NonNegative
+            } else {
+                Definiteness::Indefinite
+            };
+            for (k, axis) in axes.iter().enumerate() {
+                let scale = 1e7;
+                let r = Rotation3::from_axis_angle(axis, 0.37 * (k as f64 + 1.0));
+                let d = Matrix3::from_diagonal(&(Vector3::new(v[0], v[1], v[2]) * scale));
+                let a = r.matrix() * d * r.matrix().transpose();
+                let s = [
+                    a[(0, 0)],
+                    a[(1, 1)],
+                    a[(2, 2)],
+                    a[(0, 1)],
+                    a[(1, 2)],
+                    a[(0, 2)],
+                ];
+                let got = definiteness(&s);
+                // Rotation rounds exact zeros to rounding noise: a zero value then counts
+                // as either sign, nothing else may differ.
+                if v.contains(&0.0) {
+                    assert!(
+                        got == want || got == Definiteness::Indefinite,
+                        "set {n}, axis {k}: {got:?}, want {want:?}"
+                    );
+                } else {
+                    assert_eq!(got, want, "set {n}, axis {k}");
+                }
+            }
+        }
+        // The unrotated uniaxial and zero states are exact.
+        assert_eq!(
+            definiteness(&[-3e7, 0.0, 0.0, 0.0, 0.0, 0.0]),
+            Definiteness::NonPositive
+        );
+        assert_eq!(
+            definiteness(&[3e6, 0.0, 0.0, 0.0, 0.0, 0.0]),
+            Definiteness::NonNegative
+        );
+        assert_eq!(definiteness(&[0.0; 6]), Definiteness::NonPositive);
+        // Pure shear is indefinite.
+        assert_eq!(
+            definiteness(&[0.0, 0.0, 0.0, 1e6, 0.0, 0.0]),
+            Definiteness::Indefinite
+        );
     }
 
     #[test]

@@ -28,7 +28,7 @@
 //! the order of the e_i (the gradient of a symmetric convex function is order preserving),
 //! so P is one of ∅, {1}, {1,2}, {1,2,3}: the one whose σ_i have the signs it assumes.
 
-use super::principal::{principal_values, Spectral};
+use super::principal::{definiteness, principal_values, Definiteness, Spectral};
 use super::yield_surface::{invariants, tension_weight};
 use crate::material::Voigt;
 
@@ -46,15 +46,21 @@ pub enum Recovery {
 
 /// Where the effective stress lies: pure compression (every principal value ≤ 0),
 /// pure tension (every one ≥ 0), or mixed, decided from the invariant bounds
-/// Ī₁/3 ∓ (2/3)√(3J̄₂) first and from the principal values only when needed.
+/// Ī₁/3 ∓ (2/3)√(3J̄₂) first, then from the signs of I₁, I₂, I₃ ([`definiteness`], which
+/// also settles the uniaxial and biaxial states the bounds leave open), and from the
+/// principal values only for a mixed state.
 fn weight(eff: &Voigt) -> f64 {
     let (i1, q) = invariants(eff);
     if i1 / 3.0 - 2.0 * q / 3.0 >= 0.0 {
-        1.0
-    } else if i1 / 3.0 + 2.0 * q / 3.0 <= 0.0 {
-        0.0
-    } else {
-        tension_weight(&principal_values(eff))
+        return 1.0;
+    }
+    if i1 / 3.0 + 2.0 * q / 3.0 <= 0.0 {
+        return 0.0;
+    }
+    match definiteness(eff) {
+        Definiteness::NonPositive => 0.0,
+        Definiteness::NonNegative => 1.0,
+        Definiteness::Indefinite => tension_weight(&principal_values(eff)),
     }
 }
 

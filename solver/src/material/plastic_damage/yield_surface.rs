@@ -45,6 +45,14 @@ impl YieldSurface {
     pub fn surely_inside(&self, i1: f64, q: f64, ct: f64, cc: f64) -> bool {
         self.beta(ct, cc) >= 0.0 && self.value_from(i1, q, i1 / 3.0 + 2.0 * q / 3.0, ct, cc) <= 0.0
     }
+
+    /// [`Self::surely_inside`] for a stress known to have no positive principal value
+    /// (`principal::definiteness`): then ⟨σ̂_max⟩ = 0, whatever β, and F does not decrease
+    /// with σ̂_max (γ ≥ 0), so σ̂_max ≤ min(Ī₁/3 + (2/3)√(3J̄₂), 0) bounds F.
+    #[inline]
+    pub fn surely_inside_compressed(&self, i1: f64, q: f64, ct: f64, cc: f64) -> bool {
+        self.value_from(i1, q, (i1 / 3.0 + 2.0 * q / 3.0).min(0.0), ct, cc) <= 0.0
+    }
 }
 
 /// Ī₁ and √(3J̄₂) of a stress-like Voigt vector (tensor shear components).

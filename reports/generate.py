@@ -12,6 +12,8 @@ Reads (paths relative to the repository root, or given on the command line):
   and curves;
 - results/crosscheck/performance.json — the timings of the performance table;
 - benchmarks/history.jsonl — throughput over commits;
+- reports/recorded/NAME/ — recorded runs kept in the repository (record.json with the
+  provenance, and the files of a Yingxiuwan run folder), one section each;
 - results/yingxiuwan/ — the Yingxiuwan case's run (summary.json, histories.csv,
   checks.json, and post/post.json with its maps from reports/yingxiuwan_post.py), when
   that case exists.
@@ -127,6 +129,7 @@ class Inputs:
     performance: list[dict[str, Any]] = field(default_factory=list)
     history: list[dict[str, Any]] = field(default_factory=list)
     yingxiuwan: dict[str, Any] | None = None
+    recorded: list[dict[str, Any]] = field(default_factory=list)
     missing: list[str] = field(default_factory=list)
 
 
@@ -206,13 +209,41 @@ def read_inputs(root: Path) -> Inputs:
         inp.missing.append(str(hist.relative_to(root)))
 
     inp.yingxiuwan = read_yingxiuwan(root)
+    rec = root / "reports/recorded"
+    if rec.is_dir():
+        for d in sorted(p for p in rec.iterdir() if (p / "record.json").exists()):
+            inp.recorded.append(read_recorded(d))
     return inp
 
 
 def read_yingxiuwan(root: Path) -> dict[str, Any] | None:
     """The Yingxiuwan case's run, when there is one: results/yingxiuwan/summary.json (the
     run summary of `dcfm run`) and histories.csv (time, energies, damaged volume)."""
-    d = root / "results/yingxiuwan"
+    return read_run(root / "results/yingxiuwan")
+
+
+def read_recorded(d: Path) -> dict[str, Any]:
+    """A recorded run kept in the repository (reports/recorded/NAME/: record.json with its
+    provenance, and the files of `read_run`); every file must be there."""
+    record = _load_json(d / "record.json")
+    for k in ("title", "commit", "date", "machine", "threads", "command", "note"):
+        if not isinstance(record, dict) or k not in record:
+            raise ReportError(f"{d / 'record.json'}: missing key '{k}'")
+    run = read_run(d)
+    if run is None:
+        raise ReportError(f"{d}: a recorded run needs summary.json")
+    for what, present in (("checks.json", run["checks"] is not None), ("post/post.json", run["post"] is not None),
+                          ("histories.csv", bool(run["columns"]))):
+        if not present:
+            raise ReportError(f"{d}: a recorded run needs {what}")
+    run["record"] = record
+    run["anchor"] = "recorded-" + d.name
+    return run
+
+
+def read_run(d: Path) -> dict[str, Any] | None:
+    """A run folder of the Yingxiuwan case: summary.json, histories.csv, checks.json and
+    post/ (None without summary.json)."""
     summary = d / "summary.json"
     if not summary.exists():
         return None
@@ -501,7 +532,8 @@ def build(inp: Inputs) -> tuple[str, str, list[str]]:
 
     rep.h('<nav><a href="#summary">Summary</a> · <a href="#cases">Verification cases</a> · '
           '<a href="#crosschecks">Cross-checks</a> · <a href="#performance">Performance</a> · '
-          '<a href="#history">Throughput history</a>' + (' · <a href="#yingxiuwan">Yingxiuwan</a>' if inp.yingxiuwan else "") + "</nav>")
+          '<a href="#history">Throughput history</a>' + (' · <a href="#yingxiuwan">Yingxiuwan</a>' if inp.yingxiuwan else "")
+          + "".join(f' · <a href="#{esc(r["anchor"])}">{esc(r["record"]["title"].split(" (")[0])}</a>' for r in inp.recorded) + "</nav>")
     rep.h('<section id="summary"><h2>Summary</h2><div class="scroll"><table><thead><tr><th>group</th><th>checks</th><th>pass</th><th>fail</th></tr></thead><tbody>')
     rep.m("## Summary\n\n| group | checks | pass | fail |\n|---|---:|---:|---:|")
     for g, (p, n) in groups.items():
@@ -651,6 +683,8 @@ def build(inp: Inputs) -> tuple[str, str, list[str]]:
     # Yingxiuwan (only when the case has been run) ---------------------------------
     if inp.yingxiuwan:
         yingxiuwan_section(rep, inp.yingxiuwan)
+    for r in inp.recorded:
+        yingxiuwan_section(rep, r)
 
     body = "\n".join(rep.html_parts)
     page = HTML_TEMPLATE.replace("{{BODY}}", body).replace("{{TITLE}}", f"dcfm verification report ({esc(inp.commit)})")
@@ -661,8 +695,19 @@ def yingxiuwan_section(rep: Report, y: dict[str, Any]) -> None:
     """The Yingxiuwan powerhouse case (paper §4): its run summary and the damaged volume
     over time from its histories."""
     s = y["summary"]
-    rep.h('<section id="yingxiuwan"><h2>Yingxiuwan underground powerhouse</h2>')
-    rep.m("## Yingxiuwan underground powerhouse\n")
+    record = y.get("record")
+    if record is None:
+        rep.h('<section id="yingxiuwan"><h2>Yingxiuwan underground powerhouse</h2>')
+        rep.m("## Yingxiuwan underground powerhouse\n")
+    else:
+        rep.h(f'<section id="{esc(y["anchor"])}"><h2>{esc(record["title"])}</h2>')
+        rep.m(f"## {record['title']}\n")
+        line = (f"Recorded run, not rerun by this report: commit {record['commit']}, {record['date']}, {record['threads']} threads "
+                f"on {record['machine']}. {record['note']} How it was made: {record['command']}.")
+        if record.get("reduction"):
+            line += f" Histories: {record['reduction']}."
+        rep.h(f'<p class="meta">{esc(line)}</p>')
+        rep.m(line + "\n")
     keys = [k for k in ("title", "nodes", "elements", "steps", "dt", "end_time", "wall_s", "element_updates_per_s", "energy_residual_relative", "contact_unsettled_steps", "contact_joint") if k in s]
 
     def shown(v: Any) -> Any:
@@ -706,6 +751,11 @@ def yingxiuwan_section(rep: Report, y: dict[str, Any]) -> None:
             ax.plot(cols["time"], [sum(x) for x in zip(*concrete)], label="dcfm, lining + inner")
         ax.axhline(63.2, color="k", ls="--", lw=1, label="paper: 63.2 m³ before the earthquake")
         ax.axvline(2.6, color="r", ls=":", lw=1, label="paper: onset t ≈ 2.6 s")
+        if cols["time"][-1] >= 60.0 - 1e-6:
+            # The paper's steep growth in 2.6–20 s and 30–40 s and 460.3 m³ at 60 s (§4.6.1).
+            for k, (a, b) in enumerate(((2.6, 20.0), (30.0, 40.0))):
+                ax.axvspan(a, b, color="0.85", alpha=0.5, lw=0, label="paper: steep growth" if k == 0 else None)
+            ax.plot([60.0], [460.3], "k*", ms=9, label="paper: 460.3 m³ at 60 s")
         ax.set_xlabel("time (s)")
         ax.set_title("concrete, against the paper's marks")
         ax.grid(True, alpha=0.3)

@@ -177,3 +177,23 @@ def test_yingxiuwan_section_only_with_its_results(tmp_path):
     (y / "histories.csv").write_text("time,damaged_volume_total_rock\n0,0\n1,63.2\n")
     page, md, _ = generate.build(generate.read_inputs(tmp_path))
     assert 'id="yingxiuwan"' in page and "## Yingxiuwan" in md
+
+
+def test_recorded_runs_get_their_own_section_with_provenance(tmp_path):
+    import shutil
+
+    write_inputs(tmp_path)
+    src = ROOT / "reports/recorded/yingxiuwan_ci_60s"
+    dst = tmp_path / "reports/recorded/yingxiuwan_ci_60s"
+    shutil.copytree(src, dst)
+    page, md, _ = generate.build(generate.read_inputs(tmp_path))
+    record = json.loads((src / "record.json").read_text())
+    assert f'id="recorded-yingxiuwan_ci_60s"' in page and f"## {record['title']}" in md
+    assert "Recorded run, not rerun by this report: commit c082d3f" in md
+    # The paper's 60 s figure beside ours, the survey table and the 60 s maps.
+    assert "paper: 460.3 m³ at 60 s" in md and "ours at 60 s" in md
+    assert "damage_lining_60 s" in md
+    # A recorded run with a file missing is refused by name.
+    (dst / "checks.json").unlink()
+    with pytest.raises(generate.ReportError, match="checks.json"):
+        generate.read_inputs(tmp_path)

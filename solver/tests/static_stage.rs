@@ -387,3 +387,168 @@ fn damping_energy_is_finite_with_dormant_nodes_and_regional_damping() {
         "relative energy residual {rel}"
     );
 }
+
+/// A wall standing on a base (one body) and an inner block placed on the base beside the
+/// wall, with interfaces "seat" (inner block on the base) and "joint" (inner block
+/// against the wall). `joint` adds the joint interface; `bond_step` holds it out of
+/// contact until a last step that bonds it.
+fn inner_block_case(joint: bool, bond_step: bool) -> String {
+    let mut text = String::from(
+        r#"
+[time]
+end = 0.01
+[mesh]
+split = [["base", "inner"], ["wall", "inner"]]
+[[mesh.blocks]]
+name = "base"
+origin = [0.0, 0.0, 0.0]
+size = [2.0, 1.0, 1.0]
+divisions = [2, 1, 1]
+[[mesh.blocks]]
+name = "wall"
+origin = [0.0, 0.0, 1.0]
+size = [1.0, 1.0, 2.0]
+divisions = [1, 1, 2]
+[[mesh.blocks]]
+name = "inner"
+origin = [1.0, 0.0, 1.0]
+size = [1.0, 1.0, 1.0]
+divisions = [1, 1, 1]
+[node_sets.all]
+box = [[-1.0, -1.0, -1.0], [3.0, 2.0, 4.0]]
+[node_sets.bottom]
+box = [[-1.0, -1.0, -0.001], [3.0, 2.0, 0.001]]
+[materials.rock]
+model = "elastic"
+young = 1e9
+poisson = 0.25
+density = 2700.0
+[materials.concrete]
+model = "elastic"
+young = 30e9
+poisson = 0.2
+density = 2400.0
+[[regions]]
+name = "base"
+material = "rock"
+integration = "full"
+[[regions]]
+name = "wall"
+material = "rock"
+integration = "full"
+[[regions]]
+name = "inner"
+material = "concrete"
+integration = "full"
+[[interfaces]]
+name = "seat"
+surface_a = "inner-base"
+surface_b = "base-inner"
+mu_s = 0.6
+mu_d = 0.5
+cohesion = 1e9
+"#,
+    );
+    if joint {
+        text.push_str(
+            "[[interfaces]]\nname = \"joint\"\nsurface_a = \"inner-wall\"\nsurface_b = \"wall-inner\"\n\
+             mu_s = 0.6\nmu_d = 0.5\ncohesion = 1e9\n",
+        );
+    }
+    text.push_str(
+        r#"[loads.gravity]
+acceleration = [0.0, 0.0, -9.81]
+[[boundary.fixed]]
+set = "bottom"
+dofs = "xyz"
+[[boundary.fixed]]
+set = "all"
+dofs = "y"
+[static]
+solver = "direct"
+[static.in_situ]
+method = "gravity"
+[[static.steps]]
+name = "inner block"
+activate = ["inner"]
+"#,
+    );
+    if bond_step {
+        text.push_str("[[static.steps]]\nname = \"joint bonded\"\nbond = [\"joint\"]\n");
+    }
+    text
+}
+
+/// (static result, joint interface index, the model) of a case.
+fn run_inner(text: &str) -> (static_stage::StaticResult, dcfm::model::Model) {
+    let case = parse_case(text, "case.toml", Path::new(".")).unwrap();
+    let plan = case.static_plan.unwrap();
+    let (m, r) = static_stage::run(case.model, &plan).unwrap();
+    (r, m)
+}
+
+#[test]
+fn an_interface_bonded_by_a_later_step_lets_both_sides_settle_first() {
+    let (held, m) = run_inner(&inner_block_case(true, true));
+    let (free, _) = run_inner(&inner_block_case(false, false));
+    let (tied, mt) = run_inner(&inner_block_case(true, false));
+    let c = m.contact.as_ref().unwrap();
+    let k = c.interface_index("joint").unwrap();
+    let pairs = c.pairs(k);
+    assert_eq!(pairs.len(), 4);
+    // Bonded at the end, at rest in the offset the sides reached on their own: the
+    // displacements are those of the case without the joint (the bond step adds no force).
+    assert_eq!(c.state_counts(k).0, [4, 0, 0, 0]);
+    let scale = free.u.iter().flatten().fold(0.0f64, |a, x| a.max(x.abs()));
+    assert!(scale > 0.0);
+    for (a, b) in held.u.iter().zip(&free.u) {
+        for d in 0..3 {
+            assert!((a[d] - b[d]).abs() <= 1e-9 * scale, "{a:?} vs {b:?}");
+        }
+    }
+    // The inner block settles relative to the wall after its placement (its nodes start at
+    // rest at 0, the wall's where the in-situ step left them): mean vertical movement of
+    // the joint's nodes of a relative to their partners since the in-situ step.
+    let slip = |r: &static_stage::StaticResult| -> f64 {
+        let rel = |u: &[[f64; 3]]| -> f64 {
+            pairs
+                .iter()
+                .map(|&(a, b, _, _)| u[a as usize][2] - u[b as usize][2])
+                .sum::<f64>()
+                / 4.0
+        };
+        rel(&r.u) - rel(&r.u_in_situ)
+    };
+    assert!(slip(&held) < -1e-3 * scale, "slip {}", slip(&held));
+    // Bonded from its placement instead, the joint holds the sides together (no slip) and
+    // changes the displacements.
+    let ct = mt.contact.as_ref().unwrap();
+    assert_eq!(
+        ct.state_counts(ct.interface_index("joint").unwrap()).0,
+        [4, 0, 0, 0]
+    );
+    assert!(slip(&tied).abs() <= 1e-9 * scale, "slip {}", slip(&tied));
+    let diff = tied
+        .u
+        .iter()
+        .zip(&free.u)
+        .flat_map(|(a, b)| (0..3).map(move |d| (a[d] - b[d]).abs()));
+    assert!(diff.fold(0.0f64, f64::max) > 1e-3 * scale);
+}
+
+#[test]
+fn bond_lists_name_interfaces_once() {
+    let base = inner_block_case(true, false);
+    let e = err(&format!("{base}[[static.steps]]\nbond = [\"jiont\"]\n"));
+    assert!(
+        e.contains("static.steps[1].bond[0]") && e.contains("jiont") && e.contains("seat, joint"),
+        "{e}"
+    );
+    let e = err(&format!(
+        "{base}[[static.steps]]\nbond = [\"joint\"]\n[[static.steps]]\nbond = [\"joint\"]\n"
+    ));
+    assert!(
+        e.contains("static.steps[2].bond[0]") && e.contains("already bonded by static.steps[1]"),
+        "{e}"
+    );
+}

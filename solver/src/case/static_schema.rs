@@ -154,6 +154,11 @@ pub struct StaticStepSection {
     /// Element sets or regions placed stress-free after the excavation.
     #[serde(default)]
     pub activate: Vec<String>,
+    /// Contact interfaces that start to act in this step, bonded at rest in the offset
+    /// their sides have reached; until then they are held out of contact (both sides
+    /// settle on their own, as fresh concrete that carries no bond yet).
+    #[serde(default)]
+    pub bond: Vec<String>,
     #[serde(default)]
     pub solver: Option<StepSolver>,
     /// Release the excavation forces in this many increments (relaxation; default 1).

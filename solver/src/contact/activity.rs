@@ -6,6 +6,11 @@
 //! and at rest: its reference relative displacement δ₀ = U_b − U_a is the offset at that
 //! moment (concrete placed against rock that has already converged), so the pair formula
 //! of eqs. (6)–(9) measures gaps and slips from there (VERIFICATION.md W9 with δ₀).
+//!
+//! An interface can also be held out of contact by the static stage ([`ContactSystem::
+//! set_held`]) until a later step bonds it: its pairs and faces stay inactive while
+//! both sides are placed and settle on their own (fresh concrete carries no bond), and
+//! come alive bonded at rest in the offset they have reached.
 
 use super::geom::sub;
 use super::{ContactSystem, PairState, NONE};
@@ -16,8 +21,10 @@ impl ContactSystem {
     /// interfaces; point-to-surface nodes keep their state, δ₀ from their partner if any).
     pub fn set_activity(&mut self, dormant: &[bool], u: &[[f64; 3]]) {
         for iface in self.interfaces.iter_mut() {
+            let held = iface.held;
             for s in iface.slaves.iter_mut() {
-                let alive = !dormant[s.node as usize]
+                let alive = !held
+                    && !dormant[s.node as usize]
                     && (s.partner == NONE || !dormant[s.partner as usize]);
                 if alive && !s.active {
                     if s.partner != NONE {
@@ -41,9 +48,22 @@ impl ContactSystem {
                 s.active = alive;
             }
             for (f, a) in iface.b_faces.iter().zip(iface.b_face_active.iter_mut()) {
-                *a = f.iter().all(|&k| !dormant[k as usize]);
+                *a = !held && f.iter().all(|&k| !dormant[k as usize]);
             }
         }
+    }
+
+    /// Hold interface `k` out of contact (`true`) or let it act (`false`) from the next
+    /// [`Self::set_activity`] on: the static stage's `bond` (module documentation).
+    pub fn set_held(&mut self, k: usize, held: bool) {
+        if let Some(iface) = self.interfaces.get_mut(k) {
+            iface.held = held;
+        }
+    }
+
+    /// Index of the interface named `name`.
+    pub fn interface_index(&self, name: &str) -> Option<usize> {
+        self.interfaces.iter().position(|i| i.name == name)
     }
 
     /// The active pairs of point-to-point contact of every interface, with their state:

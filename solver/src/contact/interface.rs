@@ -162,8 +162,12 @@ pub(crate) struct Interface {
     pub slaves: Vec<SlaveNode>,
     /// Faces of surface b (node numbers, counter-clockwise from outside b).
     pub b_faces: Vec<[u32; 4]>,
-    /// Face of surface b takes part in contact (none of its nodes dormant).
+    /// Face of surface b takes part in contact (none of its nodes dormant, the interface
+    /// not held).
     pub b_face_active: Vec<bool>,
+    /// Held out of contact by the static stage until the step that bonds it (`bond` of a
+    /// static step): every pair and face inactive, as if its nodes were dormant.
+    pub held: bool,
     /// Largest diagonal of the faces of surface b (reference configuration).
     pub b_face_size: f64,
     /// Records at the start of the step and forces of the previous sweep (interfaces with

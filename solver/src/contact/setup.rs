@@ -351,6 +351,7 @@ pub(super) fn build_interface(
         },
         slaves,
         b_face_active: vec![true; gb.faces.len()],
+        held: false,
         b_faces: gb.faces,
         b_face_size: gb.max_diag,
         snapshot: Vec::new(),

@@ -492,6 +492,26 @@ pub(super) fn active_at_installation(
     Ok(active)
 }
 
+/// The index of the contact interface `name` named by `field` (a static step's `bond`).
+fn bonded_interface(model: &Model, label: &str, field: &str, name: &str) -> Result<usize> {
+    let contact = model.contact.as_ref();
+    contact
+        .and_then(|c| c.interface_index(name))
+        .ok_or_else(|| {
+            let known = contact.map(|c| c.interface_names()).unwrap_or_default();
+            DcfmError::invalid(
+                label,
+                field,
+                format!("\"{name}\""),
+                if known.is_empty() {
+                    "the name of a contact interface (the case has none)".to_string()
+                } else {
+                    format!("the name of a contact interface: {}", known.join(", "))
+                },
+            )
+        })
+}
+
 /// The plan of `[static]`, or `None` when the case has no static stage.
 pub(super) fn build_static(
     model: &Model,
@@ -543,10 +563,19 @@ pub(super) fn build_static(
             .map(|(j, n)| element_set(model, label, &f(&format!("activate[{j}]")), n))
             .collect::<Result<Vec<_>>>()?;
         let substeps = iterations(label, &f("substeps"), st.substeps, 1)?;
+        let bond = st
+            .bond
+            .iter()
+            .enumerate()
+            .map(|(j, n)| {
+                bonded_interface(model, label, &f(&format!("bond[{j}]")), n).map(|i| (i, n.clone()))
+            })
+            .collect::<Result<Vec<_>>>()?;
         plan.steps.push(StaticStep {
             name: st.name.clone().unwrap_or_else(|| format!("step {}", k + 1)),
             excavate,
             activate,
+            bond,
             solver: st.solver.unwrap_or(solver),
             substeps,
             convergence: Convergence {
@@ -559,6 +588,25 @@ pub(super) fn build_static(
                 )?,
             },
         });
+    }
+    let mut bonded_at: Vec<Option<usize>> = Vec::new();
+    for (k, st) in plan.steps.iter().enumerate() {
+        for (j, &(i, _)) in st.bond.iter().enumerate() {
+            if bonded_at.len() <= i {
+                bonded_at.resize(i + 1, None);
+            }
+            if let Some(first) = bonded_at[i] {
+                return Err(DcfmError::invalid(
+                    label,
+                    format!("static.steps[{k}].bond[{j}]"),
+                    format!("\"{}\"", s.steps[k].bond[j]),
+                    format!(
+                        "an interface bonded once (it is already bonded by static.steps[{first}])"
+                    ),
+                ));
+            }
+            bonded_at[i] = Some(k);
+        }
     }
     plan.derive_initially_inactive(model.n_elements());
     // Play the sequence: every excavated element active, every placed element inactive.

@@ -14,7 +14,8 @@
 //!    out-of-balance of the remaining body, f_ext − f_int, is exactly the release load
 //!    Σ Bᵀσ − body force of the removed elements at the boundary nodes), place its sets
 //!    (stress-free at the current displacements, their weight on from then on, their
-//!    contact pairs bonded at rest), then solve: directly (sparse Cholesky of the initial
+//!    contact pairs bonded at rest), let the interfaces of its `bond` list act (held out
+//!    of contact until then, bonded at rest in the offset reached), then solve: directly (sparse Cholesky of the initial
 //!    stiffness, [`direct`]) or by dynamic relaxation ([`relaxation`], in substeps of the
 //!    release load);
 //! 4. reactions of the static supports; the dynamic constraints restored.
@@ -229,6 +230,11 @@ pub fn run(mut model: Model, plan: &StaticPlan) -> Result<(Model, StaticResult)>
         act.active[e as usize] = false;
     }
     let mut u = vec![[0.0; 3]; n];
+    if let Some(c) = model.contact.as_mut() {
+        for &(i, _) in plan.steps.iter().flat_map(|st| &st.bond) {
+            c.set_held(i, true);
+        }
+    }
     act.apply(&mut model, &plan.constraints, &u, &[]);
     let mut bufs = ForceBuffers::new(n);
     let mut history = Vec::new();
@@ -309,6 +315,11 @@ pub fn run(mut model: Model, plan: &StaticPlan) -> Result<(Model, StaticResult)>
                 step: label,
                 message: "no active element is left".into(),
             });
+        }
+        if let Some(c) = model.contact.as_mut() {
+            for &(i, _) in &step.bond {
+                c.set_held(i, false);
+            }
         }
         act.apply(&mut model, &plan.constraints, &u, &placed);
         let mut cx = StepContext {

@@ -100,6 +100,9 @@ pub struct StaticStep {
     pub excavate: Vec<ElementSet>,
     /// Sets placed (stress-free, in the deformed configuration) after the excavation.
     pub activate: Vec<ElementSet>,
+    /// Contact interfaces (index in the model's contact system, name) held out of contact
+    /// until this step, bonded at rest in it.
+    pub bond: Vec<(usize, String)>,
     pub solver: StepSolver,
     /// The release forces are applied in this many equal increments (relaxation).
     pub substeps: usize,
@@ -326,6 +329,10 @@ impl StaticPlan {
             }
             if !s.activate.is_empty() {
                 line += &format!("activate {}; ", names(&s.activate));
+            }
+            if !s.bond.is_empty() {
+                let bond: Vec<&str> = s.bond.iter().map(|(_, n)| n.as_str()).collect();
+                line += &format!("bond {}; ", bond.join(", "));
             }
             line += &format!(
                 "{}{} (tolerance {:.1e})",

@@ -266,6 +266,14 @@ def read_run(d: Path) -> dict[str, Any] | None:
     checks = d / "checks.json"
     out["checks"] = _load_json(checks) if checks.exists() else None
     out["post"] = read_yingxiuwan_post(d / "post")
+    measures = d.parent / "yingxiuwan_measures"
+    out["measures"] = {}
+    if d.name == "yingxiuwan" and measures.is_dir():
+        for m in sorted(p for p in measures.iterdir() if p.is_dir()):
+            run = read_run(m)
+            if run is None:
+                raise ReportError(f"{m}: a measure's run needs summary.json (scripts/main.sh)")
+            out["measures"][m.name] = run
     return out
 
 
@@ -763,7 +771,63 @@ def yingxiuwan_section(rep: Report, y: dict[str, Any]) -> None:
         rep.h(f'<figure class="wide"><img alt="damaged volume" src="data:image/png;base64,{_png(fig)}"><figcaption>Damaged volume over time '
               "(the CI mesh and a synthetic record: differences from the paper are expected and reported, not tuned)</figcaption></figure>")
     yingxiuwan_post_section(rep, y.get("post"), s)
+    if y.get("measures"):
+        measures_section(rep, y)
     rep.h("</section>")
+
+
+def _concrete_damage(run: dict[str, Any]) -> tuple[float | None, float | None, float | None, float | None]:
+    """Concrete damaged volume (lining + inner structure, histories) at the first and the
+    last row, and the lining's and the inner structure's at the last row."""
+    cols = run.get("columns") or {}
+    lin, inn = cols.get("damaged_volume_total_lining"), cols.get("damaged_volume_total_inner")
+    if not lin or not inn:
+        return None, None, None, None
+    return lin[0] + inn[0], lin[-1] + inn[-1], lin[-1], inn[-1]
+
+
+def measures_section(rep: Report, y: dict[str, Any]) -> None:
+    """The anti-seismic measures of paper §6 (generator `--measure`), each run like the
+    base case: damaged volumes, physics checks and survey side by side, and the maps at
+    the last frame."""
+    runs = {"base case": y, **{m.replace("_", " "): r for m, r in y["measures"].items()}}
+    rep.h("<h3>Anti-seismic measures (paper §6) side by side</h3><p>Each measure is the base case with one change "
+          "(`dcfm mesh yingxiuwan --measure NAME`, docs/yingxiuwan.md): a reinforced (stiffer) rock zone around the "
+          "cavern, anchorage of the upper structure, a soft isolation layer between the lower structure and the rock; "
+          "run over the same record and time. The paper shows the measures' damaged areas as smaller (its Figs. 15–16) "
+          "without a volume.</p>")
+    rep.m("### Anti-seismic measures (paper §6) side by side\n")
+    base_end = _concrete_damage(y)[1]
+    rows, md = [], []
+    for name, r in runs.items():
+        v0, v1, lin, inn = _concrete_damage(r)
+        s = r["summary"]
+        checks = r.get("checks")
+        passed = "–" if checks is None else f"{sum(1 for c in checks if c['passed'])}/{len(checks)}"
+        survey = (r.get("post") or {}).get("survey") or []
+        damaged = sum(1 for row in survey if row.get("damaged"))
+        change = "–" if (v1 is None or not base_end) else f"{100.0 * (v1 / base_end - 1.0):+.1f} %"
+        cells = [name, num(s.get("end_time")), num(v0), num(lin), num(inn), num(v1), change, passed,
+                 f"{damaged}/{len(survey)}" if survey else "–", num(s.get("energy_residual_relative"))]
+        rows.append("<tr>" + "".join(f"<td>{esc(c)}</td>" for c in cells) + "</tr>")
+        md.append("| " + " | ".join(str(c) for c in cells) + " |")
+    head = ["case", "end (s)", "concrete at 0 s (m³)", "lining at end (m³)", "inner at end (m³)", "concrete at end (m³)",
+            "against base", "physics checks", "survey locations damaged", "energy residual"]
+    rep.h('<div class="scroll"><table class="rows"><thead><tr>' + "".join(f"<th>{esc(h)}</th>" for h in head)
+          + f"</tr></thead><tbody>{''.join(rows)}</tbody></table></div>")
+    rep.m("| " + " | ".join(head) + " |\n|" + "---|" * len(head) + "\n" + "\n".join(md) + "\n")
+    maps = []
+    for name, r in runs.items():
+        images = (r.get("post") or {}).get("images") or {}
+        last = [k for k in images if k.startswith("damage_") and not k.endswith("_0 s")]
+        for k in last:
+            maps.append((f"{name}: {k.replace('_', ' ')}", images[k]))
+    if maps:
+        rep.h('<div class="plots">')
+        for caption, data in maps:
+            rep.h(f'<figure><img alt="{esc(caption)}" src="data:image/png;base64,{data}"><figcaption>{esc(caption)}</figcaption></figure>')
+        rep.h("</div>")
+        rep.m("Maps at the last frame: " + ", ".join(c for c, _ in maps) + " (in index.html).\n")
 
 
 def _yes(flag: Any, part: Any) -> str:

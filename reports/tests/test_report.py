@@ -197,3 +197,26 @@ def test_recorded_runs_get_their_own_section_with_provenance(tmp_path):
     (dst / "checks.json").unlink()
     with pytest.raises(generate.ReportError, match="checks.json"):
         generate.read_inputs(tmp_path)
+
+
+def test_measures_are_shown_beside_the_base_case(tmp_path):
+    write_inputs(tmp_path)
+    hist = "time,damaged_volume_total_lining,damaged_volume_total_inner\n0,10,0\n3,100,100\n"
+    y = tmp_path / "results/yingxiuwan"
+    y.mkdir(parents=True)
+    (y / "summary.json").write_text(json.dumps({"title": "Yingxiuwan", "end_time": 3.0}))
+    (y / "histories.csv").write_text(hist)
+    m = tmp_path / "results/yingxiuwan_measures/isolation_layer"
+    m.mkdir(parents=True)
+    (m / "summary.json").write_text(json.dumps({"title": "Yingxiuwan, isolation", "end_time": 3.0}))
+    (m / "histories.csv").write_text(hist.replace("3,100,100", "3,100,50"))
+    (m / "checks.json").write_text(json.dumps([{"name": "c", "value": 1, "limit": 2, "passed": True, "what": "w"}]))
+    page, md, _ = generate.build(generate.read_inputs(tmp_path))
+    assert "Anti-seismic measures (paper §6) side by side" in md
+    # Base 200 m³ at the end, the measure 150 m³: −25 %, its checks counted.
+    assert "| base case | 3 | 10 | 100 | 100 | 200 | +0.0 % |" in md
+    assert "| isolation layer | 3 | 10 | 100 | 50 | 150 | -25.0 % | 1/1 |" in md
+    # A measure's folder without its summary is named.
+    (m / "summary.json").unlink()
+    with pytest.raises(generate.ReportError, match="isolation_layer"):
+        generate.read_inputs(tmp_path)

@@ -59,8 +59,12 @@ mod slot {
     pub const FRACTURE: usize = 15;
     /// Total mechanical dissipation density ∫σ:dε − ψ (J/m³).
     pub const DISSIPATED: usize = 16;
+    /// Nominal stress σ of the last update (Voigt, 6 values): the σₙ of the next
+    /// increment's dissipation, kept rather than recomputed from the state (under the
+    /// consistent recovery rule that needs the spectral decomposition of a damaged point).
+    pub const STRESS: usize = 17;
     /// Number of values.
-    pub const LEN: usize = 17;
+    pub const LEN: usize = 23;
 }
 
 /// Margin below zero, relative to c̄_c, of the yield bound under which
@@ -175,6 +179,15 @@ impl PlasticDamage {
     /// of a point state: an initial strain ε₀ set by the static stage, reached elastically.
     pub fn prime_strain(&self, s: &mut [f64], strain: &Voigt) {
         s[slot::STRAIN..slot::STRAIN + 6].copy_from_slice(strain);
+        self.refresh_stress(s);
+    }
+
+    /// Store in a point state the nominal stress at its recorded strain ([`slot::STRESS`],
+    /// what an update would have returned there): after the strain or the internal
+    /// variables of a state were set other than by [`Self::update`].
+    pub fn refresh_stress(&self, s: &mut [f64]) {
+        let sig = self.stress_from_state(&voigt(&s[slot::STRAIN..]), s);
+        s[slot::STRESS..slot::STRESS + 6].copy_from_slice(&sig);
     }
 
     /// Largest characteristic length (m) without snap-back of the uniaxial tensile or
@@ -385,12 +398,14 @@ impl PlasticDamage {
         new[slot::DISSIPATED] = if unchanged && t.damage(start.y_t) == 0.0 {
             old[slot::DISSIPATED]
         } else {
-            let sig0 = self.stress_from_state(&eps0, old);
+            // σₙ as the last update returned it: stress_from_state(ε₀, old) bit for bit.
+            let sig0 = voigt(&old[slot::STRESS..]);
             let work = 0.5 * dot(&add(&sig0, &sig), &sub(strain, &eps0));
             let psi0 = 0.5 * dot(&sig0, &sub(&eps0, &start.plastic));
             let psi1 = 0.5 * dot(&sig, &sub(strain, &st.plastic));
             old[slot::DISSIPATED] + work - (psi1 - psi0)
         };
+        new[slot::STRESS..slot::STRESS + 6].copy_from_slice(&sig);
         sig
     }
 
@@ -438,6 +453,7 @@ impl PlasticDamage {
         new.copy_from_slice(old);
         new[slot::STRAIN..slot::STRAIN + 6].copy_from_slice(strain);
         new[slot::DAMAGE] = 0.0;
+        new[slot::STRESS..slot::STRESS + 6].copy_from_slice(&eff);
         Some(eff)
     }
 

@@ -433,8 +433,8 @@ fn duvaut_lions_relaxes_halfway_when_dt_equals_viscosity() {
         char_length: 1.0,
         dt: 1e-3,
     };
-    let old = vec![0.0; 17];
-    let (mut a, mut b) = (vec![0.0; 17], vec![0.0; 17]);
+    let old = vec![0.0; slot::LEN];
+    let (mut a, mut b) = (vec![0.0; slot::LEN], vec![0.0; slot::LEN]);
     inviscid.update(&eps, &old, &mut a, &ctx);
     let s = viscous.update(&eps, &old, &mut b, &ctx);
     let (pa, pb) = (inviscid.plastic_strain(&a), viscous.plastic_strain(&b));
@@ -513,7 +513,7 @@ fn large_increments_stay_finite_and_admissible() {
         char_length: 0.5,
         dt: 1e-4,
     };
-    let mut st = vec![0.0; 17];
+    let mut st = vec![0.0; slot::LEN];
     let path = [
         [5e-3, -2e-3, 1e-3, 4e-3, -1e-3, 2e-3],
         [-2e-2, -1e-2, -3e-2, 0.0, 1e-2, 0.0],
@@ -521,7 +521,7 @@ fn large_increments_stay_finite_and_admissible() {
         [-1e-1, 0.0, 0.0, 0.0, 0.0, 0.0],
     ];
     for eps in path {
-        let mut new = vec![0.0; 17];
+        let mut new = vec![0.0; slot::LEN];
         let s = m.update(&eps, &st, &mut new, &ctx);
         assert!(s.iter().all(|v| v.is_finite()), "{s:?}");
         assert!(m.yield_function(&eps, &new, 0.5) <= 1e-6 * FC0);
@@ -884,6 +884,7 @@ fn virgin_elastic_shortcut_is_the_general_update_bit_for_bit() {
             for i in 0..6 {
                 old[slot::STRAIN + i] = size * uniform();
             }
+            m.refresh_stress(&mut old);
             let strain: Voigt = std::array::from_fn(|i| old[slot::STRAIN + i] + 1e-5 * uniform());
             // A char. length above the Total rule's full-strength length for some draws.
             let ctx = PointContext {
@@ -917,5 +918,49 @@ fn virgin_elastic_shortcut_is_the_general_update_bit_for_bit() {
             shortcut > 1000 && general > 500,
             "{reg:?} {rec:?}: {shortcut} / {general}"
         );
+    }
+}
+
+/// The nominal stress kept in the state ([`slot::STRESS`]) is the one a recomputation from
+/// the state gives, bit for bit, along a damaging path under both recovery rules (so the
+/// dissipation that reads it is what recomputing σₙ would give).
+#[test]
+fn the_kept_stress_is_the_recomputed_one() {
+    for rec in [Recovery::LeeFenves, Recovery::Consistent] {
+        let m = w10_rules(Regularisation::Plastic, rec);
+        let mut old = vec![0.0; m.state_len()];
+        m.init_state(&mut old);
+        let mut new = old.clone();
+        let ctx = PointContext {
+            char_length: 1.0,
+            dt: 1e-4,
+        };
+        // Tension past the peak, unloading, compression through crack closure.
+        let path = (0..300).map(|k| {
+            let t = k as f64 / 300.0;
+            let e = 4e-4 * (std::f64::consts::PI * 3.0 * t).sin();
+            [e, -0.2 * e, 1e-5 * t, 0.5 * e, 0.0, -0.1 * e]
+        });
+        let mut damaged = false;
+        for strain in path {
+            let sig = m.update(&strain, &old, &mut new, &ctx);
+            let again = m.stress_from_state(&strain, &new);
+            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+            assert_eq!(
+                bits(&new[slot::STRESS..slot::STRESS + 6]),
+                bits(&sig),
+                "{rec:?}"
+            );
+            assert_eq!(bits(&again), bits(&sig), "{rec:?} at {strain:?}");
+            damaged |= m.tensile_damage(&new) > 0.5;
+            std::mem::swap(&mut old, &mut new);
+        }
+        assert!(damaged, "{rec:?}: the path should crack the point");
+        // A primed state keeps the stress at its strain.
+        let mut s = vec![0.0; m.state_len()];
+        m.init_state(&mut s);
+        m.prime_strain(&mut s, &[-1e-4, -1e-4, -2e-4, 0.0, 1e-5, 0.0]);
+        let want = m.stress_from_state(&[-1e-4, -1e-4, -2e-4, 0.0, 1e-5, 0.0], &s);
+        assert_eq!(&s[slot::STRESS..slot::STRESS + 6], &want[..]);
     }
 }

@@ -219,7 +219,18 @@ def read_inputs(root: Path) -> Inputs:
 def read_yingxiuwan(root: Path) -> dict[str, Any] | None:
     """The Yingxiuwan case's run, when there is one: results/yingxiuwan/summary.json (the
     run summary of `dcfm run`) and histories.csv (time, energies, damaged volume)."""
-    return read_run(root / "results/yingxiuwan")
+    run = read_run(root / "results/yingxiuwan")
+    if run is None:
+        return None
+    # The paper's anti-seismic measures run beside it by the main job, one folder each.
+    measures = root / "results/yingxiuwan_measures"
+    if measures.is_dir():
+        for m in sorted(p for p in measures.iterdir() if p.is_dir()):
+            r = read_run(m)
+            if r is None:
+                raise ReportError(f"{m}: a measure's run needs summary.json (scripts/main.sh)")
+            run["measures"][m.name] = r
+    return run
 
 
 def read_recorded(d: Path) -> dict[str, Any]:
@@ -266,14 +277,7 @@ def read_run(d: Path) -> dict[str, Any] | None:
     checks = d / "checks.json"
     out["checks"] = _load_json(checks) if checks.exists() else None
     out["post"] = read_yingxiuwan_post(d / "post")
-    measures = d.parent / "yingxiuwan_measures"
     out["measures"] = {}
-    if d.name == "yingxiuwan" and measures.is_dir():
-        for m in sorted(p for p in measures.iterdir() if p.is_dir()):
-            run = read_run(m)
-            if run is None:
-                raise ReportError(f"{m}: a measure's run needs summary.json (scripts/main.sh)")
-            out["measures"][m.name] = run
     return out
 
 

@@ -589,12 +589,11 @@ pub(super) fn build_static(
             },
         });
     }
-    let mut bonded_at: Vec<Option<usize>> = Vec::new();
+    // The step that bonds each interface (bonded_interface resolved every index).
+    let mut bonded_at: Vec<Option<usize>> =
+        vec![None; model.contact.as_ref().map_or(0, |c| c.len())];
     for (k, st) in plan.steps.iter().enumerate() {
         for (j, &(i, _)) in st.bond.iter().enumerate() {
-            if bonded_at.len() <= i {
-                bonded_at.resize(i + 1, None);
-            }
             if let Some(first) = bonded_at[i] {
                 return Err(DcfmError::invalid(
                     label,

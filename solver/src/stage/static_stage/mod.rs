@@ -15,9 +15,9 @@
 //!    Σ Bᵀσ − body force of the removed elements at the boundary nodes), place its sets
 //!    (stress-free at the current displacements, their weight on from then on, their
 //!    contact pairs bonded at rest), let the interfaces of its `bond` list act (held out
-//!    of contact until then, bonded at rest in the offset reached), then solve: directly (sparse Cholesky of the initial
-//!    stiffness, [`direct`]) or by dynamic relaxation ([`relaxation`], in substeps of the
-//!    release load);
+//!    of contact until then, bonded at rest in the offset reached), then solve: directly
+//!    (sparse Cholesky of the initial stiffness, [`direct`]) or by dynamic relaxation
+//!    ([`relaxation`], in substeps of the release load);
 //! 4. reactions of the static supports; the dynamic constraints restored.
 //!
 //! The model is moved in and handed back (the relaxation lends it to the explicit core).

@@ -4,8 +4,8 @@
 //!
 //! `internal_forces/cube20_full_{lanes,scalar}`: the element-force phase alone
 //! (`Simulation::internal_forces`) of the fully integrated elastic 20³ cube, with the
-//! elastic kernel in SIMD lanes (`hex8_full_lanes`, `ElementGroup::lanes = true`) and with
-//! the scalar kernel (the default); both give the same forces bit for bit.
+//! Gauss points in SIMD lanes (`hex8_full_lanes`, `ElementGroup::lanes = true`, the
+//! default) and with the scalar kernel; both give the same forces bit for bit.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use dcfm::element::Integration;

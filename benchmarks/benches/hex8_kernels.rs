@@ -1,7 +1,11 @@
 //! Internal-force kernels of one hex8 element, elastic material:
 //! - `one_point`: uniform-strain gradient + Flanagan–Belytschko hourglass forces
 //!   (`hex8_uniform::internal_force`);
-//! - `full`: 2×2×2 Gauss points (`hex8_full::internal_force`).
+//! - `full`: 2×2×2 Gauss points (`hex8_full::internal_force`);
+//! - `full_lanes`: the same with the eight Gauss points in SIMD lanes
+//!   (`hex8_full_lanes::internal_force`, dispatched like the step does);
+//! - `hex8_full_plastic_damage/{scalar,lanes}`: both with the plastic-damage model below
+//!   first yield (the never-yielded shortcut, checked in lanes by the lane kernel).
 //!
 //! `*/single` runs one element whose data stays in L1 (pure arithmetic cost);
 //! `*/stream_64000` sweeps the geometry of 64 000 distinct elements (the 40³ cube's working
@@ -16,8 +20,11 @@ use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use dcfm::element::hex8_full::{self, FullGeometry};
+use dcfm::element::hex8_full_lanes;
 use dcfm::element::hex8_uniform::{self, UniformGeometry};
-use dcfm::material::{Elastic, Material, PointContext};
+use dcfm::element::lanes::{run_lane_work, LaneWork};
+use dcfm::material::plastic_damage::PlasticDamageParams;
+use dcfm::material::{Elastic, Material, PlasticDamage, PointContext};
 
 /// A distorted 0.25 m hexahedron (node order of `hex8_shape::NODE_XI`), shifted by `s`.
 fn coords(s: f64) -> [[f64; 3]; 8] {
@@ -190,5 +197,101 @@ fn full(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, one_point, full);
+/// One call of the lane kernel, compiled for the CPU's best instruction set.
+struct LaneForce<'a> {
+    geo: &'a FullGeometry,
+    material: &'a Material,
+    u: &'a [[f64; 3]; 8],
+    old: &'a [f64],
+    new: &'a mut [f64],
+    ctx: &'a PointContext,
+    f: &'a mut [[f64; 3]; 8],
+}
+
+impl LaneWork for LaneForce<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn run(self) {
+        hex8_full_lanes::internal_force(
+            self.geo,
+            self.material,
+            self.u,
+            None,
+            self.old,
+            self.new,
+            self.ctx,
+            self.f,
+        )
+    }
+}
+
+fn full_lanes(c: &mut Criterion) {
+    let ctx = PointContext {
+        char_length: 0.25,
+        dt: 1e-5,
+    };
+    let x = coords(0.0);
+    let geo = FullGeometry::new(&x).expect("valid element");
+    let u = displacements(&x);
+    let elastic = material();
+    let plastic = Material::PlasticDamage(Box::new(
+        PlasticDamage::new(
+            "concrete",
+            *elastic.elastic(),
+            &PlasticDamageParams::from_strengths(2.9e6, 13e6, 24.1e6, 100.0, 10e3),
+        )
+        .expect("valid plastic-damage parameters"),
+    ));
+    for (name, mat) in [
+        ("hex8_full", &elastic),
+        ("hex8_full_plastic_damage", &plastic),
+    ] {
+        let stride = mat.state_len();
+        let old = {
+            let mut s = vec![0.0; 8 * stride];
+            for p in s.chunks_exact_mut(stride.max(1)) {
+                mat.init_state(p);
+            }
+            s
+        };
+        let mut new = old.clone();
+        let mut group = c.benchmark_group(name);
+        group.throughput(Throughput::Elements(1));
+        if stride > 0 {
+            group.bench_function("scalar", |b| {
+                let mut f = [[0.0; 3]; 8];
+                b.iter(|| {
+                    hex8_full::internal_force(
+                        black_box(&geo),
+                        mat,
+                        black_box(&u),
+                        &old,
+                        &mut new,
+                        &ctx,
+                        &mut f,
+                    );
+                    black_box(&f);
+                })
+            });
+        }
+        group.bench_function(if stride > 0 { "lanes" } else { "single_lanes" }, |b| {
+            let mut f = [[0.0; 3]; 8];
+            b.iter(|| {
+                run_lane_work(LaneForce {
+                    geo: black_box(&geo),
+                    material: mat,
+                    u: black_box(&u),
+                    old: &old,
+                    new: &mut new,
+                    ctx: &ctx,
+                    f: &mut f,
+                });
+                black_box(&f);
+            })
+        });
+        group.finish();
+    }
+}
+
+criterion_group!(benches, one_point, full, full_lanes);
 criterion_main!(benches);

@@ -1,17 +1,20 @@
-//! The SIMD-lane kernel of fully integrated elastic elements (`hex8_full_lanes`) inside the
-//! step: on a distorted mesh whose group sizes leave partial lane blocks, with Rayleigh
-//! stiffness damping and element references, the internal and damping forces and a run of
-//! steps are the scalar kernel's bit for bit, on 1 and 2 threads.
+//! The SIMD-lane kernel of fully integrated elements (`hex8_full_lanes`, the Gauss points in
+//! lanes) inside the step: on a distorted mesh, elastic and plastic-damage (cracking under a
+//! strong initial velocity), with Rayleigh stiffness damping, element references and an
+//! in-situ initial stress, the internal and damping forces, the displacements and the
+//! material states after a run of steps are the scalar kernel's bit for bit, on 1 and 2
+//! threads.
 
 use dcfm::element::Integration;
-use dcfm::material::{Elastic, Material};
+use dcfm::material::plastic_damage::PlasticDamageParams;
+use dcfm::material::{Elastic, Material, PlasticDamage};
 use dcfm::mesh::BoxMeshSpec;
 use dcfm::model::{Model, Rayleigh, RegionSetup};
 use dcfm::stage::Simulation;
 
 /// 7 × 5 × 3 elements of rock, every interior node moved by up to 20 % of the spacing,
 /// base fixed, a random-looking initial velocity field.
-fn simulation(lanes: bool, damping: bool, reference: bool) -> Simulation {
+fn simulation(lanes: bool, damping: bool, reference: bool, plastic: bool) -> Simulation {
     let mut mesh = BoxMeshSpec::single("rock", [0.0; 3], [7.0, 5.0, 3.0], [7, 5, 3])
         .build("lanes test")
         .unwrap();
@@ -32,7 +35,14 @@ fn simulation(lanes: bool, damping: bool, reference: bool) -> Simulation {
     }
     let setup = RegionSetup {
         region: "rock".to_string(),
-        material: Material::Elastic(Elastic::new("rock", 20e9, 0.25, 2700.0).unwrap()),
+        material: if plastic {
+            // Tensile strength near the ≈ 3 MPa of the waves of the initial velocity.
+            let el = Elastic::new("rock", 20e9, 0.25, 2700.0).unwrap();
+            let p = PlasticDamageParams::from_strengths(3.0e6, 24e6, 36e6, 100.0, 10e3);
+            Material::PlasticDamage(Box::new(PlasticDamage::new("rock", el, &p).unwrap()))
+        } else {
+            Material::Elastic(Elastic::new("rock", 20e9, 0.25, 2700.0).unwrap())
+        },
         integration: Integration::Full,
         hourglass: 0.05,
     };
@@ -45,8 +55,16 @@ fn simulation(lanes: bool, damping: bool, reference: bool) -> Simulation {
             beta: 1e-5,
         };
     }
+    let mesh = model.mesh.clone();
     for g in &mut model.groups {
         g.lanes = lanes;
+        if plastic {
+            // An in-situ stress growing with depth (initial strains at every point).
+            g.set_initial_stress(&mesh, |x| {
+                let s = -0.2e6 * (3.0 - x[2]);
+                [s, 0.8 * s, 1.2 * s, 0.05e6 * x[0], 0.0, -0.03e6 * x[1]]
+            });
+        }
         if reference {
             g.reference = Some(
                 (0..g.len())
@@ -67,45 +85,77 @@ fn simulation(lanes: bool, damping: bool, reference: bool) -> Simulation {
     sim
 }
 
-fn run(
-    lanes: bool,
-    damping: bool,
-    reference: bool,
-    threads: usize,
-) -> (Vec<[f64; 3]>, Vec<[f64; 3]>) {
+/// Displacements, internal forces and the material states of every point after 25 steps.
+type Outcome = (Vec<[f64; 3]>, Vec<[f64; 3]>, Vec<f64>);
+
+fn run(lanes: bool, damping: bool, reference: bool, plastic: bool, threads: usize) -> Outcome {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
         .build()
         .unwrap();
     pool.install(|| {
-        let mut sim = simulation(lanes, damping, reference);
+        let mut sim = simulation(lanes, damping, reference, plastic);
         sim.run_steps(25).unwrap();
         sim.internal_forces();
-        (sim.u.clone(), sim.internal_force().to_vec())
+        let states = sim
+            .model
+            .groups
+            .iter()
+            .flat_map(|g| g.states.current().to_vec())
+            .collect();
+        (sim.u.clone(), sim.internal_force().to_vec(), states)
     })
+}
+
+fn same(a: &[f64], b: &[f64]) -> bool {
+    a.len() == b.len() && a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits())
 }
 
 #[test]
 fn lanes_step_like_the_scalar_kernel_bit_for_bit() {
-    for (damping, reference) in [(false, false), (true, false), (false, true), (true, true)] {
-        let scalar = run(false, damping, reference, 1);
-        assert!(scalar.1.iter().flatten().any(|f| f.abs() > 0.0));
-        for threads in [1, 2] {
-            let lanes = run(true, damping, reference, threads);
-            let same = |a: &[[f64; 3]], b: &[[f64; 3]]| {
-                a.iter()
-                    .flatten()
-                    .zip(b.iter().flatten())
-                    .all(|(x, y)| x.to_bits() == y.to_bits())
-            };
-            assert!(
-                same(&scalar.0, &lanes.0),
-                "displacements, damping {damping}, reference {reference}, {threads} thread(s)"
-            );
-            assert!(
-                same(&scalar.1, &lanes.1),
-                "forces, damping {damping}, reference {reference}, {threads} thread(s)"
-            );
+    for plastic in [false, true] {
+        for (damping, reference) in [(false, false), (true, false), (false, true), (true, true)] {
+            let scalar = run(false, damping, reference, plastic, 1);
+            assert!(scalar.1.iter().flatten().any(|f| f.abs() > 0.0));
+            for threads in [1, 2] {
+                let lanes = run(true, damping, reference, plastic, threads);
+                let case = format!(
+                    "plastic {plastic}, damping {damping}, reference {reference}, {threads} thread(s)"
+                );
+                assert!(
+                    same(scalar.0.as_flattened(), lanes.0.as_flattened()),
+                    "displacements, {case}"
+                );
+                assert!(
+                    same(scalar.1.as_flattened(), lanes.1.as_flattened()),
+                    "forces, {case}"
+                );
+                assert!(same(&scalar.2, &lanes.2), "material states, {case}");
+            }
         }
     }
+}
+
+#[test]
+fn the_plastic_case_cracks() {
+    // The comparison above covers the return mapping: some points of the plastic case
+    // have damaged within the 25 steps, others have not.
+    let sim = {
+        let mut sim = simulation(true, false, false, true);
+        sim.run_steps(25).unwrap();
+        sim
+    };
+    let g = &sim.model.groups[0];
+    let stride = g.material.state_len();
+    let (mut damaged, mut intact) = (0, 0);
+    for state in g.states.current().chunks_exact(stride) {
+        match g.material.tensile_and_compressive_damage(state) {
+            Some((dt, dc)) if dt > 0.0 || dc > 0.0 => damaged += 1,
+            _ => intact += 1,
+        }
+    }
+    assert!(
+        damaged > 20 && intact > 20,
+        "{damaged} damaged, {intact} intact"
+    );
 }

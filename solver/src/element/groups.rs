@@ -8,12 +8,15 @@ use crate::element::colouring::BLOCK;
 use crate::element::hex8_full::{self, FullGeometry};
 use crate::element::hex8_full_lanes;
 use crate::element::hex8_uniform::{self, UniformGeometry};
-use crate::element::lanes::{self, LANES};
+use crate::element::lanes::{self, LaneWork};
 use crate::element::stable_step::characteristic_length;
 use crate::element::Integration;
 use crate::error::{DcfmError, Result};
 use crate::material::{Material, PointContext, PointStates, Voigt};
 use crate::mesh::Mesh;
+
+/// Elements per parallel task of the two-phase force pass (one runtime dispatch each).
+const FORCE_CHUNK: usize = 16;
 
 /// Precomputed geometry of a group's elements.
 #[derive(Clone, Debug)]
@@ -63,12 +66,10 @@ pub struct ElementGroup {
     /// u − u_ref, so that an element activated in a deformed configuration starts
     /// stress-free there (the static stage's activation); `None` for groups without one.
     pub reference: Option<Vec<[[f64; 3]; 8]>>,
-    /// Compute the internal forces of linear elastic fully integrated elements in SIMD
-    /// lanes of [`LANES`] elements ([`hex8_full_lanes`], bit-identical to the scalar
-    /// kernel); `false` (the default) runs the scalar kernel for every element. Off by
-    /// default because the lane kernel as written is slower than the scalar one (about
-    /// 15 % more CPU time on the 20³ cube: its lane values spill to the stack,
-    /// docs/benchmarks.md, issue 11).
+    /// Compute the forces of fully integrated elements with their eight Gauss points in
+    /// SIMD lanes ([`hex8_full_lanes`], bit-identical to the scalar kernel, compiled for
+    /// the best instruction set of the CPU); `true` by default. `false` runs the scalar
+    /// kernel of [`hex8_full`], the reference the tests compare with.
     pub lanes: bool,
     /// The two-phase force pass ([`add_internal_forces`]): every element's forces computed
     /// in parallel element by element into these buffers, then added to the nodes run by
@@ -214,6 +215,7 @@ macro_rules! kernel {
             new: SharedMut(new.as_mut_ptr()),
             stride,
             beta: $beta,
+            lanes: $g.lanes,
             u: $u,
             v: $v,
         }
@@ -301,7 +303,7 @@ impl ElementGroup {
             states,
             initial_strain: None,
             reference: None,
-            lanes: false,
+            lanes: true,
             element_forces,
         })
     }
@@ -352,20 +354,24 @@ impl ElementGroup {
             let kernel = kernel!(self, u, v, beta);
             // The damping buffer is written (and read) only when β > 0.
             let damping = SharedMut(buffers.damping.as_mut_ptr());
+            let lanes = kernel.lanes;
             buffers
                 .internal
-                .par_iter_mut()
+                .par_chunks_mut(FORCE_CHUNK)
                 .enumerate()
-                .with_min_len(4)
-                .for_each(|(le, fe)| {
-                    let Some(dt) = settings.element_dt(le) else {
-                        return;
+                .for_each(|(c, chunk)| {
+                    let first = c * FORCE_CHUNK;
+                    let work = ChunkForces {
+                        kernel: &kernel,
+                        settings: &settings,
+                        first,
+                        out: chunk,
+                        damping,
                     };
-                    let mut fd = [[0.0; 3]; 8];
-                    kernel.forces(le, dt, fe, &mut fd);
-                    if beta > 0.0 {
-                        // SAFETY: element le's entry, written by this iteration alone.
-                        unsafe { *damping.at(le) = fd };
+                    if lanes {
+                        lanes::run_lane_work(work)
+                    } else {
+                        work.run()
                     }
                 });
         }
@@ -399,7 +405,6 @@ impl ElementGroup {
         let n_nodes = f_int.len();
         debug_assert_eq!(f_damp.len(), n_nodes);
         let beta = settings.beta;
-        let dt = settings.dt;
         let due = settings.due;
         // Add element le's internal force `fe` and damping force `fd` to its nodes.
         let add = |nodes: &[u32; 8], fe: &[[f64; 3]; 8], fd: &[[f64; 3]; 8]| {
@@ -446,56 +451,24 @@ impl ElementGroup {
             });
             return;
         }
-        // Lane blocks: linear elastic, fully integrated, no initial strain (the material
-        // update is the elastic stress and the state is empty).
-        let lane_geometry = match (&self.geometry, &self.material, &self.initial_strain) {
-            (GroupGeometry::Full(g), Material::Elastic(e), None) if self.lanes && due.is_none() => {
-                Some((g.as_slice(), *e))
-            }
-            _ => None,
-        };
         let kernel = kernel!(self, u, v, beta);
-        let element = |le: usize, dt: f64| {
-            let mut fe = [[0.0; 3]; 8];
-            let mut fd = [[0.0; 3]; 8];
-            kernel.forces(le, dt, &mut fe, &mut fd);
-            add(&kernel.conn[le], &fe, &fd);
-        };
-        match lane_geometry {
-            None => blocks.par_iter().enumerate().for_each(|(r, run)| {
-                if !run_due(r) {
-                    return;
-                }
-                for le in run.clone() {
-                    if let Some(dt) = settings.element_dt(le) {
-                        element(le, dt);
-                    }
-                }
-            }),
-            // Whole lane blocks of a run in SIMD lanes, the rest element by element; the
-            // forces are added in the group's order either way, so the sums are those of
-            // the scalar path.
-            Some((g, e)) => blocks.par_iter().for_each(|run| {
-                lanes::dispatch(|| {
-                    let mut le = run.start;
-                    while le + LANES <= run.end {
-                        let geo: [&FullGeometry; LANES] = std::array::from_fn(|l| &g[le + l]);
-                        let ue = hex8_full_lanes::to_lanes(&std::array::from_fn(|l| {
-                            kernel.displacements(le + l)
-                        }));
-                        let fe =
-                            hex8_full_lanes::elastic_internal_forces(&geo, e.lambda, e.mu, &ue);
-                        for l in 0..LANES {
-                            let mut fd = [[0.0; 3]; 8];
-                            kernel.damping(le + l, &mut fd);
-                            add(&kernel.conn[le + l], &lanes::lane_of(&fe, l), &fd);
-                        }
-                        le += LANES;
-                    }
-                    (le..run.end).for_each(|le| element(le, dt));
-                })
-            }),
-        }
+        let lanes = kernel.lanes;
+        blocks.par_iter().enumerate().for_each(|(r, run)| {
+            if !run_due(r) {
+                return;
+            }
+            let work = RunForces {
+                kernel: &kernel,
+                settings: &settings,
+                run: run.clone(),
+                add: &add,
+            };
+            if lanes {
+                lanes::run_lane_work(work)
+            } else {
+                work.run()
+            }
+        });
     }
 
     /// Smallest of `level` (one value per element, the group's order) over each colouring
@@ -914,6 +887,8 @@ struct Kernel<'k> {
     /// State values per element.
     stride: usize,
     beta: f64,
+    /// Fully integrated elements through [`hex8_full_lanes`] (else [`hex8_full`]).
+    lanes: bool,
     u: &'k [[f64; 3]],
     v: &'k [[f64; 3]],
 }
@@ -939,7 +914,58 @@ impl Kernel<'_> {
             if let GroupGeometry::Full(g) = self.geometry {
                 let nodes = &self.conn[le];
                 let ve: [[f64; 3]; 8] = std::array::from_fn(|a| self.v[nodes[a] as usize]);
-                damping_force_full(&g[le], self.material, &ve, self.beta, fd);
+                if self.lanes {
+                    let el = self.material.elastic();
+                    *fd = hex8_full_lanes::damping_force(&g[le], el.lambda, el.mu, &ve, self.beta);
+                } else {
+                    damping_force_full(&g[le], self.material, &ve, self.beta, fd);
+                }
+            }
+        }
+    }
+
+    /// The forces of the elements `first..first + out.len()` into `out`, and their damping
+    /// forces into `damping` (indexed by element) when β > 0; elements not due are
+    /// skipped. An `#[inline(always)]` body, so that it is compiled for the instruction
+    /// set of the [`lanes::dispatch`] that calls it.
+    #[inline(always)]
+    fn chunk_forces(
+        &self,
+        settings: &ForceSettings<'_>,
+        first: usize,
+        out: &mut [[[f64; 3]; 8]],
+        damping: SharedMut<[[f64; 3]; 8]>,
+    ) {
+        for (i, fe) in out.iter_mut().enumerate() {
+            let le = first + i;
+            let Some(dt) = settings.element_dt(le) else {
+                continue;
+            };
+            let mut fd = [[0.0; 3]; 8];
+            self.forces(le, dt, fe, &mut fd);
+            if self.beta > 0.0 {
+                // SAFETY: element le's entry, written by this call alone.
+                unsafe { *damping.at(le) = fd };
+            }
+        }
+    }
+
+    /// Compute the forces of the due elements of one colouring run in order and hand each
+    /// to `add` (its nodes, internal and damping forces). `#[inline(always)]` like
+    /// [`Kernel::chunk_forces`].
+    #[inline(always)]
+    fn run_forces(
+        &self,
+        settings: &ForceSettings<'_>,
+        run: std::ops::Range<usize>,
+        add: &impl Fn(&[u32; 8], &[[f64; 3]; 8], &[[f64; 3]; 8]),
+    ) {
+        for le in run {
+            if let Some(dt) = settings.element_dt(le) {
+                let mut fe = [[0.0; 3]; 8];
+                let mut fd = [[0.0; 3]; 8];
+                self.forces(le, dt, &mut fe, &mut fd);
+                add(&self.conn[le], &fe, &fd);
             }
         }
     }
@@ -985,24 +1011,53 @@ impl Kernel<'_> {
                 }
             }
             GroupGeometry::Full(g) => {
-                match self.initial {
-                    None => {
-                        hex8_full::internal_force(&g[le], material, &ue, old_s, new_s, &ctx, fe)
-                    }
-                    Some(e0) => hex8_full::internal_force_with_initial_strain(
-                        &g[le],
-                        material,
-                        &ue,
-                        Some(&e0[8 * le..8 * le + 8]),
-                        old_s,
-                        new_s,
-                        &ctx,
-                        fe,
-                    ),
-                };
+                let e0 = self.initial.map(|e0| &e0[8 * le..8 * le + 8]);
+                if self.lanes {
+                    hex8_full_lanes::internal_force(
+                        &g[le], material, &ue, e0, old_s, new_s, &ctx, fe,
+                    );
+                } else {
+                    hex8_full::internal_force_with_initial_strain(
+                        &g[le], material, &ue, e0, old_s, new_s, &ctx, fe,
+                    );
+                }
                 self.damping(le, fd);
             }
         }
+    }
+}
+
+/// [`Kernel::chunk_forces`] as a [`LaneWork`].
+struct ChunkForces<'w, 'k> {
+    kernel: &'w Kernel<'k>,
+    settings: &'w ForceSettings<'w>,
+    first: usize,
+    out: &'w mut [[[f64; 3]; 8]],
+    damping: SharedMut<[[f64; 3]; 8]>,
+}
+
+impl LaneWork for ChunkForces<'_, '_> {
+    type Output = ();
+    #[inline(always)]
+    fn run(self) {
+        self.kernel
+            .chunk_forces(self.settings, self.first, self.out, self.damping)
+    }
+}
+
+/// [`Kernel::run_forces`] as a [`LaneWork`].
+struct RunForces<'w, 'k, A> {
+    kernel: &'w Kernel<'k>,
+    settings: &'w ForceSettings<'w>,
+    run: std::ops::Range<usize>,
+    add: &'w A,
+}
+
+impl<A: Fn(&[u32; 8], &[[f64; 3]; 8], &[[f64; 3]; 8])> LaneWork for RunForces<'_, '_, A> {
+    type Output = ();
+    #[inline(always)]
+    fn run(self) {
+        self.kernel.run_forces(self.settings, self.run, self.add)
     }
 }
 

@@ -14,6 +14,7 @@
 //! (the kernel is memory-bound when the geometry streams from memory).
 
 use crate::element::hex8_shape::{gauss_points, inverse_3x3, jacobian, shape_derivatives, NODE_XI};
+use crate::element::lanes::F64s;
 use crate::material::{Material, PointContext, Voigt};
 
 /// 1/√3, the 2×2×2 Gauss abscissa (equal to the one of `hex8_shape::gauss_points`, tested).
@@ -48,27 +49,33 @@ const fn natural_derivatives() -> [[[f64; 3]; 8]; 8] {
     d
 }
 
-/// Precomputed geometry of one fully integrated element (640 bytes): J⁻¹ and w·det J at
-/// each Gauss point.
+/// Precomputed geometry of one fully integrated element (640 bytes, 64-byte aligned): J⁻¹
+/// and w·det J at each Gauss point, stored point-minor (one [`F64s`] lane per point) so
+/// that the SIMD kernel of `hex8_full_lanes` loads them as they are, one vector per entry.
 #[derive(Clone, Copy, Debug)]
 pub struct FullGeometry {
-    /// (J⁻¹)_kj at each point, J_ik = ∂x_i/∂ξ_k.
-    pub jinv: [[[f64; 3]; 3]; 8],
-    /// w det J at each point (Gauss weights are 1).
-    pub wdet: [f64; 8],
+    /// (J⁻¹)_kj of point g in `jinv[k][j][g]`, J_ik = ∂x_i/∂ξ_k.
+    pub jinv: [[F64s; 3]; 3],
+    /// w det J of point g in `wdet[g]` (Gauss weights are 1).
+    pub wdet: F64s,
 }
 
 impl FullGeometry {
     /// Geometry from nodal coordinates; `None` if det J ≤ 0 at a Gauss point.
     pub fn new(x: &[[f64; 3]; 8]) -> Option<Self> {
-        let mut jinv = [[[0.0; 3]; 3]; 8];
-        let mut wdet = [0.0; 8];
+        let mut jinv = [[F64s::ZERO; 3]; 3];
+        let mut wdet = F64s::ZERO;
         for (g, p) in gauss_points().iter().enumerate() {
             let (j, det) = jacobian(x, &shape_derivatives(p));
             if det.is_nan() || det <= 0.0 {
                 return None;
             }
-            jinv[g] = inverse_3x3(&j, det);
+            let ji = inverse_3x3(&j, det);
+            for k in 0..3 {
+                for jj in 0..3 {
+                    jinv[k][jj][g] = ji[k][jj];
+                }
+            }
             wdet[g] = det;
         }
         Some(Self { jinv, wdet })
@@ -76,14 +83,20 @@ impl FullGeometry {
 
     /// Element volume.
     pub fn volume(&self) -> f64 {
-        self.wdet.iter().sum()
+        self.wdet.0.iter().sum()
+    }
+
+    /// (J⁻¹)_kj at Gauss point `g`.
+    #[inline(always)]
+    pub fn point_jinv(&self, g: usize) -> [[f64; 3]; 3] {
+        std::array::from_fn(|k| std::array::from_fn(|j| self.jinv[k][j][g]))
     }
 
     /// Displacement gradient G_ij = ∂u_i/∂x_j at Gauss point `g`.
     #[inline(always)]
     pub fn gradient(&self, g: usize, u: &[[f64; 3]; 8]) -> [[f64; 3]; 3] {
         let d = &NATURAL_DERIVATIVES[g];
-        let ji = &self.jinv[g];
+        let ji = &self.point_jinv(g);
         let mut h = [[0.0; 3]; 3];
         for a in 0..8 {
             for i in 0..3 {
@@ -115,7 +128,7 @@ impl FullGeometry {
     #[inline(always)]
     pub fn add_forces(&self, g: usize, s: &Voigt, f: &mut [[f64; 3]; 8]) {
         let d = &NATURAL_DERIVATIVES[g];
-        let ji = &self.jinv[g];
+        let ji = &self.point_jinv(g);
         let w = self.wdet[g];
         let sig = [[s[0], s[3], s[5]], [s[3], s[1], s[4]], [s[5], s[4], s[2]]];
         let mut p = [[0.0; 3]; 3];

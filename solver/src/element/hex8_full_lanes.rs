@@ -1,112 +1,175 @@
-//! Fully integrated elastic hex8 in SIMD lanes (issue 11): the internal forces of
-//! [`LANES`] elements at once, each lane doing the IEEE operations of the scalar kernel
-//! ([`crate::element::hex8_full::internal_force`] with an elastic material) in the same
-//! order, so that the forces are the scalar ones bit for bit (tested on random elements).
+//! Fully integrated hex8 with its eight Gauss points in SIMD lanes (issue 11): one element
+//! at a time, each [`F64s`] holding one value per Gauss point, so that the geometry
+//! ([`FullGeometry`], stored point-minor) is loaded as it lies and nothing is gathered or
+//! transposed. Each lane performs the IEEE operations of the scalar kernel
+//! ([`crate::element::hex8_full::internal_force_with_initial_strain`]) in the same order,
+//! so the forces and the material states are the scalar ones bit for bit (tested on random
+//! elements and materials, and through whole runs in `solver/tests/element_lanes.rs`).
 //!
-//! Per Gauss point g and lane (as in `hex8_full`):
+//! Per Gauss point g (as in `hex8_full`):
 //!
 //! ```text
-//! H_ik = Σ_a u_ai ∂N_a/∂ξ_k,   G = H J⁻¹,   ε = sym G,   σ = λ tr ε I + 2μ ε
-//! P_ik = w det J Σ_j σ_ij (J⁻¹)_kj,   f_ai += Σ_k ∂N_a/∂ξ_k P_ik
+//! H_ik = Σ_a u_ai ∂N_a/∂ξ_k,   G = H J⁻¹,   ε = sym G,   σ = material update of ε (+ ε₀)
+//! P_ik = w det J Σ_j σ_ij (J⁻¹)_kj,   f_ai += Σ_k ∂N_a/∂ξ_k P_ik   (g = 0, …, 7 in turn)
 //! ```
 //!
-//! The geometry stays stored per element ([`FullGeometry`], 640 bytes); J⁻¹ and w det J of
-//! one point are gathered into lanes as the point is reached.
+//! The strain and P are formed with the points in lanes (u_ai broadcast, ∂N_a/∂ξ_k of the
+//! eight points a constant vector); the nodal sums f_ai run over the points in order with
+//! the **nodes** in lanes (P_ik of point g broadcast), the scalar kernel's accumulation
+//! order. The material update between them is the scalar one, point by point, except for
+//! linear elasticity, whose stress is computed in lanes.
 
 use crate::element::hex8_full::{FullGeometry, NATURAL_DERIVATIVES};
-use crate::element::lanes::{elastic_stress, F64s, NodalLanes, LANES};
+use crate::element::lanes::{elastic_stress, F64s, VoigtLanes, LANES};
+#[cfg(doc)]
+use crate::material::PlasticDamage;
+use crate::material::{Material, PointContext, Voigt};
 
-/// J⁻¹ and w det J of Gauss point `g` of the elements of a lane block.
-#[inline(always)]
-fn point_geometry(geo: &[&FullGeometry; LANES], g: usize) -> ([[F64s; 3]; 3], F64s) {
-    let mut ji = [[F64s::ZERO; 3]; 3];
-    let mut w = F64s::ZERO;
-    for (l, e) in geo.iter().enumerate() {
-        for k in 0..3 {
-            for j in 0..3 {
-                ji[k][j].0[l] = e.jinv[g][k][j];
+const _: () = assert!(LANES == 8, "one lane per Gauss point of the 2×2×2 rule");
+
+/// ∂N_a/∂ξ_k with the points in lanes: `POINT_DERIVATIVES[a][k][g]` is
+/// `NATURAL_DERIVATIVES[g][a][k]`.
+const POINT_DERIVATIVES: [[F64s; 3]; 8] = derivative_lanes(true);
+
+/// ∂N_a/∂ξ_k with the nodes in lanes: `NODE_DERIVATIVES[g][k][a]` is
+/// `NATURAL_DERIVATIVES[g][a][k]`.
+const NODE_DERIVATIVES: [[F64s; 3]; 8] = derivative_lanes(false);
+
+/// [`NATURAL_DERIVATIVES`] regrouped with the points (`points_in_lanes`) or the nodes in
+/// lanes.
+const fn derivative_lanes(points_in_lanes: bool) -> [[F64s; 3]; 8] {
+    let mut t = [[F64s::ZERO; 3]; 8];
+    let mut g = 0;
+    while g < 8 {
+        let mut a = 0;
+        while a < 8 {
+            let mut k = 0;
+            while k < 3 {
+                let d = NATURAL_DERIVATIVES[g][a][k];
+                if points_in_lanes {
+                    t[a][k].0[g] = d;
+                } else {
+                    t[g][k].0[a] = d;
+                }
+                k += 1;
             }
+            a += 1;
         }
-        w.0[l] = e.wdet[g];
+        g += 1;
     }
-    (ji, w)
+    t
 }
 
-/// Internal forces of [`LANES`] fully integrated linear elastic elements (Lamé λ, μ) with
-/// nodal displacements `u`: lane l of the result is `hex8_full::internal_force` of
-/// element l, bit for bit.
+/// Strain ε(u) at the eight Gauss points, one lane per point: lane g is
+/// [`FullGeometry::strain`]`(g, u)` bit for bit.
 #[inline(always)]
-pub fn elastic_internal_forces(
-    geo: &[&FullGeometry; LANES],
+pub fn point_strains(geo: &FullGeometry, u: &[[f64; 3]; 8]) -> VoigtLanes {
+    // H_ik = Σ_a u_ai d_ak, accumulated from zero in node order.
+    let mut h = [[F64s::ZERO; 3]; 3];
+    for (a, ua) in u.iter().enumerate() {
+        let d = &POINT_DERIVATIVES[a];
+        for i in 0..3 {
+            let uai = F64s::splat(ua[i]);
+            for k in 0..3 {
+                h[i][k] = h[i][k] + uai * d[k];
+            }
+        }
+    }
+    let ji = &geo.jinv;
+    let gr: [[F64s; 3]; 3] = std::array::from_fn(|i| {
+        std::array::from_fn(|j| h[i][0] * ji[0][j] + h[i][1] * ji[1][j] + h[i][2] * ji[2][j])
+    });
+    [
+        gr[0][0],
+        gr[1][1],
+        gr[2][2],
+        gr[0][1] + gr[1][0],
+        gr[1][2] + gr[2][1],
+        gr[2][0] + gr[0][2],
+    ]
+}
+
+/// Nodal forces Σ_g w det J B_gᵀ σ_g of the stresses `s` of the eight points (one lane per
+/// point): [`FullGeometry::add_forces`] for g = 0, …, 7 from zero, bit for bit.
+#[inline(always)]
+pub fn point_forces(geo: &FullGeometry, s: &VoigtLanes) -> [[f64; 3]; 8] {
+    let ji = &geo.jinv;
+    let w = geo.wdet;
+    let sig = [[s[0], s[3], s[5]], [s[3], s[1], s[4]], [s[5], s[4], s[2]]];
+    let p: [[F64s; 3]; 3] = std::array::from_fn(|i| {
+        std::array::from_fn(|k| {
+            w * (sig[i][0] * ji[k][0] + sig[i][1] * ji[k][1] + sig[i][2] * ji[k][2])
+        })
+    });
+    // f_ai, nodes in lanes, summed over the points in order.
+    let mut f = [F64s::ZERO; 3];
+    for (g, d) in NODE_DERIVATIVES.iter().enumerate() {
+        for i in 0..3 {
+            let (p0, p1, p2) = (
+                F64s::splat(p[i][0][g]),
+                F64s::splat(p[i][1][g]),
+                F64s::splat(p[i][2][g]),
+            );
+            f[i] = f[i] + (d[0] * p0 + d[1] * p1 + d[2] * p2);
+        }
+    }
+    std::array::from_fn(|a| [f[0][a], f[1][a], f[2][a]])
+}
+
+/// Internal force of one fully integrated element with the points in lanes: the forces and
+/// the material states of [`crate::element::hex8_full::internal_force_with_initial_strain`]
+/// (same arguments) bit for bit, without its volume-averaged stress. Linear elasticity is
+/// computed in lanes; plastic-damage points by [`PlasticDamage::update_points`].
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub fn internal_force(
+    geo: &FullGeometry,
+    material: &Material,
+    u: &[[f64; 3]; 8],
+    eps0: Option<&[Voigt]>,
+    old: &[f64],
+    new: &mut [f64],
+    ctx: &PointContext,
+    f: &mut [[f64; 3]; 8],
+) {
+    let mut eps = point_strains(geo, u);
+    if let Some(e0) = eps0 {
+        for (g, e0g) in e0.iter().enumerate().take(8) {
+            for i in 0..6 {
+                eps[i][g] += e0g[i];
+            }
+        }
+    }
+    let sigma = match material {
+        Material::Elastic(e) => elastic_stress(e.lambda, e.mu, &eps),
+        Material::PlasticDamage(p) => p.update_points(&eps, old, new, ctx),
+    };
+    *f = point_forces(geo, &sigma);
+}
+
+/// Stiffness-proportional damping force β K0 v of a fully integrated element with the
+/// points in lanes: the scalar `damping_force_full` of `element::groups` bit for bit
+/// (elastic stress of the strain of v, scaled by β, integrated).
+#[inline(always)]
+pub fn damping_force(
+    geo: &FullGeometry,
     lambda: f64,
     mu: f64,
-    u: &NodalLanes,
-) -> NodalLanes {
-    let mut f = [[F64s::ZERO; 3]; 8];
-    for (g, d) in NATURAL_DERIVATIVES.iter().enumerate() {
-        let (ji, w) = point_geometry(geo, g);
-        // H_ik = Σ_a u_ai d_ak, accumulated from zero in node order (FullGeometry::gradient).
-        let mut h = [[F64s::ZERO; 3]; 3];
-        for a in 0..8 {
-            for i in 0..3 {
-                for k in 0..3 {
-                    h[i][k] = h[i][k] + u[a][i] * F64s::splat(d[a][k]);
-                }
-            }
-        }
-        let gr: [[F64s; 3]; 3] = std::array::from_fn(|i| {
-            std::array::from_fn(|j| h[i][0] * ji[0][j] + h[i][1] * ji[1][j] + h[i][2] * ji[2][j])
-        });
-        let eps = [
-            gr[0][0],
-            gr[1][1],
-            gr[2][2],
-            gr[0][1] + gr[1][0],
-            gr[1][2] + gr[2][1],
-            gr[2][0] + gr[0][2],
-        ];
-        let s = elastic_stress(lambda, mu, &eps);
-        // FullGeometry::add_forces.
-        let sig = [[s[0], s[3], s[5]], [s[3], s[1], s[4]], [s[5], s[4], s[2]]];
-        let p: [[F64s; 3]; 3] = std::array::from_fn(|i| {
-            std::array::from_fn(|k| {
-                w * (sig[i][0] * ji[k][0] + sig[i][1] * ji[k][1] + sig[i][2] * ji[k][2])
-            })
-        });
-        for a in 0..8 {
-            let (d0, d1, d2) = (
-                F64s::splat(d[a][0]),
-                F64s::splat(d[a][1]),
-                F64s::splat(d[a][2]),
-            );
-            for i in 0..3 {
-                f[a][i] = f[a][i] + (d0 * p[i][0] + d1 * p[i][1] + d2 * p[i][2]);
-            }
-        }
-    }
-    f
-}
-
-/// The nodal values of [`LANES`] elements as lanes (`x[l]` is element l's).
-#[inline(always)]
-pub fn to_lanes(x: &[[[f64; 3]; 8]; LANES]) -> NodalLanes {
-    let mut out = [[F64s::ZERO; 3]; 8];
-    for (l, xl) in x.iter().enumerate() {
-        for a in 0..8 {
-            for i in 0..3 {
-                out[a][i].0[l] = xl[a][i];
-            }
-        }
-    }
-    out
+    v: &[[f64; 3]; 8],
+    beta: f64,
+) -> [[f64; 3]; 8] {
+    let s = elastic_stress(lambda, mu, &point_strains(geo, v));
+    let b = F64s::splat(beta);
+    point_forces(geo, &s.map(|x| b * x))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::element::hex8_full::internal_force;
-    use crate::element::lanes::{dispatch, lane_of};
-    use crate::material::{Elastic, Material, PointContext};
+    use crate::element::hex8_full::internal_force_with_initial_strain;
+    use crate::element::lanes::dispatch;
+    use crate::material::plastic_damage::PlasticDamageParams;
+    use crate::material::{Elastic, PlasticDamage};
     use crate::mesh::hex8_shape::NODE_XI;
 
     /// A small deterministic generator (64-bit LCG, top 53 bits) for random elements.
@@ -125,8 +188,8 @@ mod tests {
     }
 
     /// A randomly stretched, sheared and distorted hex8 (corners moved by up to 15 % of
-    /// the edge) and random displacements spanning several orders of magnitude.
-    fn random_element(rng: &mut Lcg) -> (FullGeometry, [[f64; 3]; 8]) {
+    /// the edge) and random displacements of magnitude `mag`.
+    fn random_element(rng: &mut Lcg, mag: f64) -> (FullGeometry, [[f64; 3]; 8]) {
         let scale = [
             0.2 + 3.0 * rng.next(),
             0.2 + 3.0 * rng.next(),
@@ -143,7 +206,6 @@ mod tests {
                 ]
             });
             if let Some(geo) = FullGeometry::new(&x) {
-                let mag = 10f64.powf(-6.0 + 4.0 * rng.next());
                 let u =
                     std::array::from_fn(|_| [mag * rng.sym(), mag * rng.sym(), mag * rng.sym()]);
                 return (geo, u);
@@ -151,39 +213,135 @@ mod tests {
         }
     }
 
-    #[test]
-    fn lanes_give_the_scalar_forces_bit_for_bit_on_random_elements() {
-        let mut rng = Lcg(0x5eed_1234_abcd_0001);
-        let elastic = Elastic::new("rock", 20e9, 0.25, 2700.0).unwrap();
-        let mat = Material::Elastic(elastic);
-        let ctx = PointContext {
-            char_length: 1.0,
-            dt: 1e-4,
-        };
-        for _block in 0..200 {
-            let elems: [(FullGeometry, [[f64; 3]; 8]); LANES] =
-                std::array::from_fn(|_| random_element(&mut rng));
-            let geo: [&FullGeometry; LANES] = std::array::from_fn(|l| &elems[l].0);
-            let u = to_lanes(&std::array::from_fn(|l| elems[l].1));
-            let plain = elastic_internal_forces(&geo, elastic.lambda, elastic.mu, &u);
-            let simd = dispatch(|| elastic_internal_forces(&geo, elastic.lambda, elastic.mu, &u));
-            for (l, (g, ue)) in elems.iter().enumerate() {
-                let mut f = [[0.0; 3]; 8];
-                internal_force(g, &mat, ue, &[], &mut [], &ctx, &mut f);
-                for (got, want) in [lane_of(&plain, l), lane_of(&simd, l)].iter().zip([f, f]) {
-                    for a in 0..8 {
-                        for i in 0..3 {
-                            assert_eq!(
-                                got[a][i].to_bits(),
-                                want[a][i].to_bits(),
-                                "lane {l} node {a} dir {i}: {} vs {}",
-                                got[a][i],
-                                want[a][i]
-                            );
-                        }
+    fn bits(v: &[f64]) -> Vec<u64> {
+        v.iter().map(|x| x.to_bits()).collect()
+    }
+
+    /// Forces and states of the lane kernel (plain and dispatched) against the scalar
+    /// kernel, for `draws` random elements, with and without an initial strain. Returns
+    /// the number of points updated to a damaged and to an undamaged state.
+    fn compare(material: &Material, mag: (f64, f64), draws: usize, seed: u64) -> (usize, usize) {
+        let mut rng = Lcg(seed);
+        let stride = material.state_len();
+        let (mut damaged, mut intact) = (0, 0);
+        for draw in 0..draws {
+            let m = mag.0 * (mag.1 / mag.0).powf(rng.next());
+            let (geo, u) = random_element(&mut rng, m);
+            let e0: Vec<Voigt> = (0..8)
+                .map(|_| std::array::from_fn(|_| 0.3 * m * rng.sym()))
+                .collect();
+            let mut old = vec![0.0; 8 * stride];
+            for s in old.chunks_exact_mut(stride.max(1)).take(8) {
+                material.init_state(s);
+            }
+            let ctx = PointContext {
+                char_length: 0.1 + rng.next(),
+                dt: 1e-4,
+            };
+            for eps0 in [None, Some(&e0[..])] {
+                let mut want = [[0.0; 3]; 8];
+                let mut want_state = vec![0.0; 8 * stride];
+                internal_force_with_initial_strain(
+                    &geo,
+                    material,
+                    &u,
+                    eps0,
+                    &old,
+                    &mut want_state,
+                    &ctx,
+                    &mut want,
+                );
+                for dispatched in [false, true] {
+                    let mut got = [[0.0; 3]; 8];
+                    let mut got_state = vec![0.0; 8 * stride];
+                    let mut run = || {
+                        internal_force(
+                            &geo,
+                            material,
+                            &u,
+                            eps0,
+                            &old,
+                            &mut got_state,
+                            &ctx,
+                            &mut got,
+                        )
+                    };
+                    if dispatched {
+                        dispatch(run)
+                    } else {
+                        run()
+                    }
+                    assert_eq!(
+                        bits(got.as_flattened()),
+                        bits(want.as_flattened()),
+                        "forces, draw {draw}, initial strain {}, dispatched {dispatched}",
+                        eps0.is_some()
+                    );
+                    assert_eq!(
+                        bits(&got_state),
+                        bits(&want_state),
+                        "states, draw {draw}, dispatched {dispatched}"
+                    );
+                }
+                for state in want_state.chunks_exact(stride.max(1)) {
+                    match material.tensile_and_compressive_damage(state) {
+                        Some((dt, dc)) if dt > 0.0 || dc > 0.0 => damaged += 1,
+                        _ => intact += 1,
                     }
                 }
             }
+        }
+        (damaged, intact)
+    }
+
+    #[test]
+    fn lanes_give_the_scalar_forces_bit_for_bit_for_an_elastic_material() {
+        let elastic = Elastic::new("rock", 20e9, 0.25, 2700.0).unwrap();
+        compare(
+            &Material::Elastic(elastic),
+            (1e-6, 1e-2),
+            300,
+            0x5eed_1234_abcd_0001,
+        );
+    }
+
+    #[test]
+    fn lanes_give_the_scalar_forces_and_states_bit_for_bit_for_plastic_damage() {
+        // Displacements from well inside the elastic range to cracking and crushing
+        // (ε_t0 ≈ 1e-4 on ≈ 1 m elements).
+        let el = Elastic::new("concrete", 30e9, 0.2, 2400.0).unwrap();
+        let pd = PlasticDamage::new(
+            "concrete",
+            el,
+            &PlasticDamageParams::from_strengths(3e6, 20e6, 30e6, 100.0, 10e3),
+        )
+        .unwrap();
+        let (damaged, intact) = compare(
+            &Material::PlasticDamage(Box::new(pd)),
+            (1e-6, 3e-3),
+            300,
+            0x0dd_ba11_cafe_0002,
+        );
+        // Both the never-yielded shortcut and the return mapping are exercised.
+        assert!(
+            damaged > 500 && intact > 500,
+            "{damaged} damaged, {intact} intact points"
+        );
+    }
+
+    #[test]
+    fn damping_lanes_give_the_scalar_forces_bit_for_bit() {
+        let el = Elastic::new("rock", 20e9, 0.25, 2700.0).unwrap();
+        let mut rng = Lcg(0xda3b_0003);
+        for _ in 0..100 {
+            let (geo, v) = random_element(&mut rng, 1e-1);
+            let mut want = [[0.0; 3]; 8];
+            for g in 0..8 {
+                let s = el.stress(&geo.strain(g, &v)).map(|x| 1e-4 * x);
+                geo.add_forces(g, &s, &mut want);
+            }
+            let got = dispatch(|| damping_force(&geo, el.lambda, el.mu, &v, 1e-4));
+            assert_eq!(bits(got.as_flattened()), bits(want.as_flattened()));
         }
     }
 }

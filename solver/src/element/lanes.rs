@@ -1,15 +1,16 @@
-//! SIMD lanes for the element kernels (issue 11): [`LANES`] elements are processed
-//! together, each `f64` of the scalar kernel becoming an [`F64s`] — one value per element.
+//! SIMD lanes for the element kernels (issue 11): [`LANES`] values are processed together,
+//! each `f64` of the scalar kernel becoming an [`F64s`] — one value per Gauss point of a
+//! fully integrated element in `hex8_full_lanes`.
 //!
-//! The lane type is a plain array with element-wise operators. Inside
-//! [`dispatch`] (pulp's runtime dispatch: the closure is compiled once per instruction
-//! set — AVX2 + FMA (x86-64-v3), or the baseline — and the best one the CPU offers is
-//! chosen at run time), every operator on [`F64s`] compiles to vector instructions. Each
+//! The lane type is a plain array with element-wise operators. Inside [`run_lane_work`]
+//! (pulp's runtime dispatch: the work is compiled once per instruction set — AVX-512
+//! (x86-64-v4), AVX2 + FMA (x86-64-v3), or the baseline — and the best one the CPU offers
+//! is chosen at run time), every operator on [`F64s`] compiles to vector instructions. Each
 //! lane performs exactly the IEEE operations of the scalar kernel in the same order (Rust
 //! never contracts a multiply and an add into an FMA by itself), so the lane kernels give
 //! the scalar kernels' results bit for bit; the tests compare them on random elements.
 
-use std::ops::{Add, Mul, Neg, Sub};
+use std::ops::{Add, Index, IndexMut, Mul, Neg, Sub};
 
 /// Elements per lane block. 8 × f64: one AVX-512 register, two AVX2 registers.
 pub const LANES: usize = 8;
@@ -27,6 +28,33 @@ impl F64s {
     #[inline(always)]
     pub fn splat(x: f64) -> Self {
         F64s([x; LANES])
+    }
+
+    /// `f64::sqrt` of every lane (correctly rounded, like the scalar one).
+    #[inline(always)]
+    pub fn sqrt(self) -> Self {
+        F64s(self.0.map(f64::sqrt))
+    }
+
+    /// `f64::max` lane by lane.
+    #[inline(always)]
+    pub fn max(self, other: F64s) -> Self {
+        F64s(std::array::from_fn(|l| self.0[l].max(other.0[l])))
+    }
+}
+
+impl Index<usize> for F64s {
+    type Output = f64;
+    #[inline(always)]
+    fn index(&self, l: usize) -> &f64 {
+        &self.0[l]
+    }
+}
+
+impl IndexMut<usize> for F64s {
+    #[inline(always)]
+    fn index_mut(&mut self, l: usize) -> &mut f64 {
+        &mut self.0[l]
     }
 }
 
@@ -75,12 +103,42 @@ pub type NodalLanes = [[F64s; 3]; 8];
 /// Voigt vector per lane.
 pub type VoigtLanes = [F64s; 6];
 
-/// Run `f` with the best instruction set of the CPU (pulp's runtime dispatch). Everything
-/// `f` inlines (the lane operators and kernels are `#[inline(always)]`) is compiled for
-/// that instruction set.
+/// Run `f` with the best instruction set of the CPU (pulp's runtime dispatch). What `f`
+/// inlines is compiled for that instruction set, but a closure's own body is inlined only
+/// when the compiler chooses to (a large one is not, and stays baseline code): the step
+/// loop dispatches a [`LaneWork`] through [`run_lane_work`] instead.
 #[inline(always)]
 pub fn dispatch<R>(f: impl FnOnce() -> R) -> R {
     pulp::Arch::new().dispatch(f)
+}
+
+/// Work compiled for the CPU's best instruction set by [`run_lane_work`]: implementations
+/// mark [`LaneWork::run`] `#[inline(always)]` (and everything it calls that should use the
+/// wide registers), so that the whole body is inlined into pulp's per-instruction-set entry
+/// points.
+pub trait LaneWork {
+    /// What the work returns.
+    type Output;
+    /// Do the work (to be marked `#[inline(always)]`).
+    fn run(self) -> Self::Output;
+}
+
+struct Dispatched<W>(W);
+
+impl<W: LaneWork> pulp::WithSimd for Dispatched<W> {
+    type Output = W::Output;
+    #[inline(always)]
+    fn with_simd<S: pulp::Simd>(self, _simd: S) -> W::Output {
+        self.0.run()
+    }
+}
+
+/// Run `work` compiled for the best instruction set of the CPU: AVX-512 (x86-64-v4), AVX2
+/// and FMA (x86-64-v3) or the baseline, chosen at run time by pulp. The lane operators
+/// give the same bits under each (no contraction into FMA).
+#[inline(always)]
+pub fn run_lane_work<W: LaneWork>(work: W) -> W::Output {
+    pulp::Arch::new().dispatch(Dispatched(work))
 }
 
 /// Gather the nodal values `x[conn[a]]` of the elements of one lane block.

@@ -103,7 +103,7 @@ pub fn full_stiffness(geo: &FullGeometry, el: &Elastic) -> ElementStiffness {
     let d = elastic_matrix(el);
     for g in 0..8 {
         let nd = &NATURAL_DERIVATIVES[g];
-        let ji = &geo.jinv[g];
+        let ji = &geo.point_jinv(g);
         let dn: [[f64; 3]; 8] = std::array::from_fn(|a| {
             std::array::from_fn(|j| nd[a][0] * ji[0][j] + nd[a][1] * ji[1][j] + nd[a][2] * ji[2][j])
         });

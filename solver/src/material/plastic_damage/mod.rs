@@ -20,6 +20,7 @@
 
 mod hardening;
 mod params;
+mod points_in_lanes;
 mod potential;
 mod principal;
 mod recovery;

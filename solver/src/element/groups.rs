@@ -927,7 +927,7 @@ impl Kernel<'_> {
     /// The forces of the elements `first..first + out.len()` into `out`, and their damping
     /// forces into `damping` (indexed by element) when β > 0; elements not due are
     /// skipped. An `#[inline(always)]` body, so that it is compiled for the instruction
-    /// set of the [`lanes::dispatch`] that calls it.
+    /// set of the [`lanes::run_lane_work`] that calls it.
     #[inline(always)]
     fn chunk_forces(
         &self,

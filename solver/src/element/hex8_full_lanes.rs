@@ -167,7 +167,7 @@ pub fn damping_force(
 mod tests {
     use super::*;
     use crate::element::hex8_full::internal_force_with_initial_strain;
-    use crate::element::lanes::dispatch;
+    use crate::element::lanes::{run_lane_work, LaneWork};
     use crate::material::plastic_damage::PlasticDamageParams;
     use crate::material::{Elastic, PlasticDamage};
     use crate::mesh::hex8_shape::NODE_XI;
@@ -217,6 +217,46 @@ mod tests {
         v.iter().map(|x| x.to_bits()).collect()
     }
 
+    /// One call of the lane kernel, as the step makes it (through [`run_lane_work`]: AVX-512
+    /// or AVX2 code where the CPU has them).
+    struct Call<'a> {
+        geo: &'a FullGeometry,
+        material: &'a Material,
+        u: &'a [[f64; 3]; 8],
+        eps0: Option<&'a [Voigt]>,
+        old: &'a [f64],
+        new: &'a mut [f64],
+        ctx: &'a PointContext,
+        f: &'a mut [[f64; 3]; 8],
+    }
+
+    impl LaneWork for Call<'_> {
+        type Output = ();
+        #[inline(always)]
+        fn run(self) {
+            internal_force(
+                self.geo,
+                self.material,
+                self.u,
+                self.eps0,
+                self.old,
+                self.new,
+                self.ctx,
+                self.f,
+            )
+        }
+    }
+
+    struct Damping<'a>(&'a FullGeometry, &'a Elastic, &'a [[f64; 3]; 8]);
+
+    impl LaneWork for Damping<'_> {
+        type Output = [[f64; 3]; 8];
+        #[inline(always)]
+        fn run(self) -> [[f64; 3]; 8] {
+            damping_force(self.0, self.1.lambda, self.1.mu, self.2, 1e-4)
+        }
+    }
+
     /// Forces and states of the lane kernel (plain and dispatched) against the scalar
     /// kernel, for `draws` random elements, with and without an initial strain. Returns
     /// the number of points updated to a damaged and to an undamaged state.
@@ -238,57 +278,63 @@ mod tests {
                 char_length: 0.1 + rng.next(),
                 dt: 1e-4,
             };
-            for eps0 in [None, Some(&e0[..])] {
-                let mut want = [[0.0; 3]; 8];
-                let mut want_state = vec![0.0; 8 * stride];
-                internal_force_with_initial_strain(
-                    &geo,
-                    material,
-                    &u,
-                    eps0,
-                    &old,
-                    &mut want_state,
-                    &ctx,
-                    &mut want,
-                );
-                for dispatched in [false, true] {
-                    let mut got = [[0.0; 3]; 8];
-                    let mut got_state = vec![0.0; 8 * stride];
-                    let mut run = || {
-                        internal_force(
-                            &geo,
+            // Two steps: from the virgin state, then from the state the first left (some
+            // points yielded and damaged) to a larger displacement.
+            for step in 0..2 {
+                let us = u.map(|ua| ua.map(|x| (1.0 + 0.5 * step as f64) * x));
+                let mut next = Vec::new();
+                for eps0 in [None, Some(&e0[..])] {
+                    let mut want = [[0.0; 3]; 8];
+                    let mut want_state = vec![0.0; 8 * stride];
+                    internal_force_with_initial_strain(
+                        &geo,
+                        material,
+                        &us,
+                        eps0,
+                        &old,
+                        &mut want_state,
+                        &ctx,
+                        &mut want,
+                    );
+                    for dispatched in [false, true] {
+                        let mut got = [[0.0; 3]; 8];
+                        let mut got_state = vec![0.0; 8 * stride];
+                        let call = Call {
+                            geo: &geo,
                             material,
-                            &u,
+                            u: &us,
                             eps0,
-                            &old,
-                            &mut got_state,
-                            &ctx,
-                            &mut got,
-                        )
-                    };
-                    if dispatched {
-                        dispatch(run)
-                    } else {
-                        run()
+                            old: &old,
+                            new: &mut got_state,
+                            ctx: &ctx,
+                            f: &mut got,
+                        };
+                        if dispatched {
+                            run_lane_work(call)
+                        } else {
+                            call.run()
+                        }
+                        assert_eq!(
+                            bits(got.as_flattened()),
+                            bits(want.as_flattened()),
+                            "forces, draw {draw}, initial strain {}, dispatched {dispatched}",
+                            eps0.is_some()
+                        );
+                        assert_eq!(
+                            bits(&got_state),
+                            bits(&want_state),
+                            "states, draw {draw}, dispatched {dispatched}"
+                        );
                     }
-                    assert_eq!(
-                        bits(got.as_flattened()),
-                        bits(want.as_flattened()),
-                        "forces, draw {draw}, initial strain {}, dispatched {dispatched}",
-                        eps0.is_some()
-                    );
-                    assert_eq!(
-                        bits(&got_state),
-                        bits(&want_state),
-                        "states, draw {draw}, dispatched {dispatched}"
-                    );
-                }
-                for state in want_state.chunks_exact(stride.max(1)) {
-                    match material.tensile_and_compressive_damage(state) {
-                        Some((dt, dc)) if dt > 0.0 || dc > 0.0 => damaged += 1,
-                        _ => intact += 1,
+                    for state in want_state.chunks_exact(stride.max(1)) {
+                        match material.tensile_and_compressive_damage(state) {
+                            Some((dt, dc)) if dt > 0.0 || dc > 0.0 => damaged += 1,
+                            _ => intact += 1,
+                        }
                     }
+                    next = want_state;
                 }
+                old = next;
             }
         }
         (damaged, intact)
@@ -340,7 +386,7 @@ mod tests {
                 let s = el.stress(&geo.strain(g, &v)).map(|x| 1e-4 * x);
                 geo.add_forces(g, &s, &mut want);
             }
-            let got = dispatch(|| damping_force(&geo, el.lambda, el.mu, &v, 1e-4));
+            let got = run_lane_work(Damping(&geo, &el, &v));
             assert_eq!(bits(got.as_flattened()), bits(want.as_flattened()));
         }
     }

@@ -103,19 +103,11 @@ pub type NodalLanes = [[F64s; 3]; 8];
 /// Voigt vector per lane.
 pub type VoigtLanes = [F64s; 6];
 
-/// Run `f` with the best instruction set of the CPU (pulp's runtime dispatch). What `f`
-/// inlines is compiled for that instruction set, but a closure's own body is inlined only
-/// when the compiler chooses to (a large one is not, and stays baseline code): the step
-/// loop dispatches a [`LaneWork`] through [`run_lane_work`] instead.
-#[inline(always)]
-pub fn dispatch<R>(f: impl FnOnce() -> R) -> R {
-    pulp::Arch::new().dispatch(f)
-}
-
 /// Work compiled for the CPU's best instruction set by [`run_lane_work`]: implementations
 /// mark [`LaneWork::run`] `#[inline(always)]` (and everything it calls that should use the
 /// wide registers), so that the whole body is inlined into pulp's per-instruction-set entry
-/// points.
+/// points. (A closure handed to pulp is not enough: its body is inlined only when the
+/// compiler chooses to, and a large one stays baseline code — measured, docs/benchmarks.md.)
 pub trait LaneWork {
     /// What the work returns.
     type Output;
@@ -191,6 +183,14 @@ mod tests {
         assert_eq!((-a).0[7], -7.5);
         assert_eq!(std::mem::align_of::<F64s>(), 64);
         assert_eq!(std::mem::size_of::<F64s>(), 8 * LANES);
-        assert_eq!(dispatch(|| (a * a).0[2]), 2.5 * 2.5);
+        struct Square(F64s);
+        impl LaneWork for Square {
+            type Output = F64s;
+            #[inline(always)]
+            fn run(self) -> F64s {
+                self.0 * self.0
+            }
+        }
+        assert_eq!(run_lane_work(Square(a)).0[2], 2.5 * 2.5);
     }
 }

@@ -57,6 +57,14 @@ fn material() -> Material {
     Material::Elastic(Elastic::new("rock", 20e9, 0.25, 2700.0).expect("valid elastic constants"))
 }
 
+/// The update context of the 0.25 m elements.
+fn context() -> PointContext {
+    PointContext {
+        char_length: 0.25,
+        dt: 1e-5,
+    }
+}
+
 const STREAM: usize = 64_000;
 
 /// Connectivity of `STREAM` elements over a pool of displacement "nodes", each element
@@ -93,10 +101,7 @@ fn stream_setup() -> (Vec<[u32; 8]>, Vec<[f64; 3]>) {
 
 fn one_point(c: &mut Criterion) {
     let mat = material();
-    let ctx = PointContext {
-        char_length: 0.25,
-        dt: 1e-5,
-    };
+    let ctx = context();
     let x = coords(0.0);
     let geo = UniformGeometry::new(&x, mat.elastic(), 0.05).expect("valid element");
     let u = displacements(&x);
@@ -147,10 +152,7 @@ fn one_point(c: &mut Criterion) {
 
 fn full(c: &mut Criterion) {
     let mat = material();
-    let ctx = PointContext {
-        char_length: 0.25,
-        dt: 1e-5,
-    };
+    let ctx = context();
     let x = coords(0.0);
     let geo = FullGeometry::new(&x).expect("valid element");
     let u = displacements(&x);
@@ -226,10 +228,7 @@ impl LaneWork for LaneForce<'_> {
 }
 
 fn full_lanes(c: &mut Criterion) {
-    let ctx = PointContext {
-        char_length: 0.25,
-        dt: 1e-5,
-    };
+    let ctx = context();
     let x = coords(0.0);
     let geo = FullGeometry::new(&x).expect("valid element");
     let u = displacements(&x);

@@ -3,7 +3,7 @@
 //!   (`hex8_uniform::internal_force`);
 //! - `full`: 2×2×2 Gauss points (`hex8_full::internal_force`);
 //! - `full_lanes`: the same with the eight Gauss points in SIMD lanes
-//!   (`hex8_full_lanes::internal_force`, dispatched like the step does);
+//!   (`hex8_full_lanes::internal_force` through `InternalForce`, dispatched like the step);
 //! - `hex8_full_plastic_damage/{scalar,lanes}`: both with the plastic-damage model below
 //!   first yield (the never-yielded shortcut, checked in lanes by the lane kernel).
 //!
@@ -20,9 +20,9 @@ use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use dcfm::element::hex8_full::{self, FullGeometry};
-use dcfm::element::hex8_full_lanes;
+use dcfm::element::hex8_full_lanes::InternalForce;
 use dcfm::element::hex8_uniform::{self, UniformGeometry};
-use dcfm::element::lanes::{run_lane_work, LaneWork};
+use dcfm::element::lanes::run_lane_work;
 use dcfm::material::plastic_damage::PlasticDamageParams;
 use dcfm::material::{Elastic, Material, PlasticDamage, PointContext};
 
@@ -199,34 +199,6 @@ fn full(c: &mut Criterion) {
     group.finish();
 }
 
-/// One call of the lane kernel, compiled for the CPU's best instruction set.
-struct LaneForce<'a> {
-    geo: &'a FullGeometry,
-    material: &'a Material,
-    u: &'a [[f64; 3]; 8],
-    old: &'a [f64],
-    new: &'a mut [f64],
-    ctx: &'a PointContext,
-    f: &'a mut [[f64; 3]; 8],
-}
-
-impl LaneWork for LaneForce<'_> {
-    type Output = ();
-    #[inline(always)]
-    fn run(self) {
-        hex8_full_lanes::internal_force(
-            self.geo,
-            self.material,
-            self.u,
-            None,
-            self.old,
-            self.new,
-            self.ctx,
-            self.f,
-        )
-    }
-}
-
 fn full_lanes(c: &mut Criterion) {
     let ctx = context();
     let x = coords(0.0);
@@ -276,10 +248,11 @@ fn full_lanes(c: &mut Criterion) {
         group.bench_function(if stride > 0 { "lanes" } else { "single_lanes" }, |b| {
             let mut f = [[0.0; 3]; 8];
             b.iter(|| {
-                run_lane_work(LaneForce {
+                run_lane_work(InternalForce {
                     geo: black_box(&geo),
                     material: mat,
                     u: black_box(&u),
+                    eps0: None,
                     old: &old,
                     new: &mut new,
                     ctx: &ctx,

@@ -20,7 +20,7 @@
 //! linear elasticity, whose stress is computed in lanes.
 
 use crate::element::hex8_full::{FullGeometry, NATURAL_DERIVATIVES};
-use crate::element::lanes::{elastic_stress, F64s, VoigtLanes, LANES};
+use crate::element::lanes::{elastic_stress, F64s, LaneWork, VoigtLanes, LANES};
 #[cfg(doc)]
 use crate::material::PlasticDamage;
 use crate::material::{Material, PointContext, Voigt};
@@ -147,6 +147,36 @@ pub fn internal_force(
     *f = point_forces(geo, &sigma);
 }
 
+/// One call of [`internal_force`] as a [`LaneWork`], for callers outside the step (tests,
+/// benchmarks) that want the code the step runs: `run_lane_work(InternalForce { .. })`.
+pub struct InternalForce<'a> {
+    pub geo: &'a FullGeometry,
+    pub material: &'a Material,
+    pub u: &'a [[f64; 3]; 8],
+    pub eps0: Option<&'a [Voigt]>,
+    pub old: &'a [f64],
+    pub new: &'a mut [f64],
+    pub ctx: &'a PointContext,
+    pub f: &'a mut [[f64; 3]; 8],
+}
+
+impl LaneWork for InternalForce<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn run(self) {
+        internal_force(
+            self.geo,
+            self.material,
+            self.u,
+            self.eps0,
+            self.old,
+            self.new,
+            self.ctx,
+            self.f,
+        )
+    }
+}
+
 /// Stiffness-proportional damping force β K0 v of a fully integrated element with the
 /// points in lanes: the scalar `damping_force_full` of `element::groups` bit for bit
 /// (elastic stress of the strain of v, scaled by β, integrated).
@@ -167,7 +197,7 @@ pub fn damping_force(
 mod tests {
     use super::*;
     use crate::element::hex8_full::internal_force_with_initial_strain;
-    use crate::element::lanes::{run_lane_work, LaneWork};
+    use crate::element::lanes::run_lane_work;
     use crate::material::plastic_damage::PlasticDamageParams;
     use crate::material::{Elastic, PlasticDamage};
     use crate::mesh::hex8_shape::NODE_XI;
@@ -215,36 +245,6 @@ mod tests {
 
     fn bits(v: &[f64]) -> Vec<u64> {
         v.iter().map(|x| x.to_bits()).collect()
-    }
-
-    /// One call of the lane kernel, as the step makes it (through [`run_lane_work`]: AVX-512
-    /// or AVX2 code where the CPU has them).
-    struct Call<'a> {
-        geo: &'a FullGeometry,
-        material: &'a Material,
-        u: &'a [[f64; 3]; 8],
-        eps0: Option<&'a [Voigt]>,
-        old: &'a [f64],
-        new: &'a mut [f64],
-        ctx: &'a PointContext,
-        f: &'a mut [[f64; 3]; 8],
-    }
-
-    impl LaneWork for Call<'_> {
-        type Output = ();
-        #[inline(always)]
-        fn run(self) {
-            internal_force(
-                self.geo,
-                self.material,
-                self.u,
-                self.eps0,
-                self.old,
-                self.new,
-                self.ctx,
-                self.f,
-            )
-        }
     }
 
     struct Damping<'a>(&'a FullGeometry, &'a Elastic, &'a [[f64; 3]; 8]);
@@ -299,7 +299,7 @@ mod tests {
                     for dispatched in [false, true] {
                         let mut got = [[0.0; 3]; 8];
                         let mut got_state = vec![0.0; 8 * stride];
-                        let call = Call {
+                        let call = InternalForce {
                             geo: &geo,
                             material,
                             u: &us,

@@ -154,13 +154,57 @@ pub fn lane_of(x: &NodalLanes, l: usize) -> [[f64; 3]; 8] {
     std::array::from_fn(|a| [x[a][0].0[l], x[a][1].0[l], x[a][2].0[l]])
 }
 
-/// Isotropic elastic stress σ = λ tr ε I + 2μ ε (engineering shear), lane-wise, with the
-/// operations of `Elastic::stress`.
+/// A number the shared formulas are written for once: one `f64` (the scalar kernels) or an
+/// [`F64s`] (one value per lane), with the same IEEE operations in either.
+pub trait Lane:
+    Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> + Neg<Output = Self>
+{
+    /// `x` (in every lane).
+    fn splat(x: f64) -> Self;
+    /// Square root (correctly rounded).
+    fn sqrt(self) -> Self;
+    /// `f64::max` (lane by lane).
+    fn max(self, other: Self) -> Self;
+}
+
+impl Lane for f64 {
+    #[inline(always)]
+    fn splat(x: f64) -> Self {
+        x
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        f64::sqrt(self)
+    }
+    #[inline(always)]
+    fn max(self, other: Self) -> Self {
+        f64::max(self, other)
+    }
+}
+
+impl Lane for F64s {
+    #[inline(always)]
+    fn splat(x: f64) -> Self {
+        F64s::splat(x)
+    }
+    #[inline(always)]
+    fn sqrt(self) -> Self {
+        F64s::sqrt(self)
+    }
+    #[inline(always)]
+    fn max(self, other: Self) -> Self {
+        F64s::max(self, other)
+    }
+}
+
+/// Isotropic elastic stress σ = λ tr ε I + 2μ ε (engineering shear), for one point or
+/// lane-wise: `Elastic::stress` is this for `f64`.
 #[inline(always)]
-pub fn elastic_stress(lambda: f64, mu: f64, e: &VoigtLanes) -> VoigtLanes {
+pub fn elastic_stress<T: Lane>(lambda: f64, mu: f64, e: &[T; 6]) -> [T; 6] {
     let tr = e[0] + e[1] + e[2];
-    let l = lambda * tr;
-    let m2 = 2.0 * mu;
+    let l = T::splat(lambda) * tr;
+    let m2 = T::splat(2.0 * mu);
+    let mu = T::splat(mu);
     [
         l + m2 * e[0],
         l + m2 * e[1],

@@ -77,17 +77,7 @@ impl Elastic {
     /// σ = E0 : ε in Voigt form (shear strains engineering, so τ = μ γ).
     #[inline(always)]
     pub fn stress(&self, e: &Voigt) -> Voigt {
-        let tr = e[0] + e[1] + e[2];
-        let l = self.lambda * tr;
-        let m2 = 2.0 * self.mu;
-        [
-            l + m2 * e[0],
-            l + m2 * e[1],
-            l + m2 * e[2],
-            self.mu * e[3],
-            self.mu * e[4],
-            self.mu * e[5],
-        ]
+        crate::element::lanes::elastic_stress(self.lambda, self.mu, e)
     }
 
     /// ε = E0⁻¹ : σ (engineering shear).

@@ -36,6 +36,7 @@ pub use hardening::{
 pub use params::{mohr_coulomb_fc, Constants, PlasticDamageParams};
 pub use recovery::Recovery;
 
+use crate::element::lanes::Lane;
 use crate::error::{DcfmError, Result};
 use crate::material::{Elastic, PointContext, Voigt};
 use potential::Potential;
@@ -80,6 +81,27 @@ fn virgin_bound(surface: &YieldSurface, ct: f64, cc: f64) -> (f64, f64) {
         surface.beta(ct, cc),
         (1.0 - surface.alpha) * (1.0 - VIRGIN_MARGIN) * cc,
     )
+}
+
+/// Upper bound of the bracket of eq. (25) at effective stress `eff` (one point, or one per
+/// lane), for the never-yielded check: F ≤ −margin c̄_c ⇔ bracket ≤ (1 − α)(1 − margin) c̄_c,
+/// with σ̂_max ≤ Ī₁/3 + (2/3)√(3J̄₂) (F does not decrease with σ̂_max when β ≥ 0). A decision
+/// with a margin: products instead of the quotients of `invariants`.
+#[inline(always)]
+fn virgin_bracket<T: Lane>(surface: &YieldSurface, beta: f64, eff: &[T; 6]) -> T {
+    const THIRD: f64 = 1.0 / 3.0;
+    let i1 = eff[0] + eff[1] + eff[2];
+    let m = i1 * T::splat(THIRD);
+    let (a, b, c) = (eff[0] - m, eff[1] - m, eff[2] - m);
+    let ss = a * a
+        + b * b
+        + c * c
+        + T::splat(2.0) * (eff[3] * eff[3] + eff[4] * eff[4] + eff[5] * eff[5]);
+    let q = (T::splat(1.5) * ss).sqrt();
+    let smax = m + T::splat(2.0 * THIRD) * q;
+    let zero = T::splat(0.0);
+    T::splat(surface.alpha) * i1 + q + T::splat(beta) * smax.max(zero)
+        - T::splat(surface.gamma) * (-smax).max(zero)
 }
 
 /// Sub-step counts tried in turn when a return does not converge.
@@ -435,19 +457,7 @@ impl PlasticDamage {
             let (t, c) = self.element_laws(l);
             virgin_bound(&self.surface, t.law.f0, c.law.f0)
         });
-        // F ≤ −margin c̄_c ⇔ the bracket of eq. (25) ≤ (1 − α)(1 − margin) c̄_c, with
-        // σ̂_max ≤ Ī₁/3 + (2/3)√(3J̄₂) (F does not decrease with σ̂_max when β ≥ 0). A
-        // decision with a margin: products instead of the quotients of `invariants`.
-        const THIRD: f64 = 1.0 / 3.0;
-        let i1 = eff[0] + eff[1] + eff[2];
-        let m = i1 * THIRD;
-        let (a, b, c) = (eff[0] - m, eff[1] - m, eff[2] - m);
-        let ss =
-            a * a + b * b + c * c + 2.0 * (eff[3] * eff[3] + eff[4] * eff[4] + eff[5] * eff[5]);
-        let q = (1.5 * ss).sqrt();
-        let smax = m + 2.0 * THIRD * q;
-        let bracket = self.surface.alpha * i1 + q + beta * smax.max(0.0)
-            - self.surface.gamma * (-smax).max(0.0);
+        let bracket = virgin_bracket(&self.surface, beta, &eff);
         if !(beta >= 0.0 && bracket <= limit) {
             return None;
         }

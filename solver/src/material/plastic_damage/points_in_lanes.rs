@@ -6,7 +6,7 @@
 //! are those of eight calls of [`PlasticDamage::update`] bit for bit (tested in
 //! `element::hex8_full_lanes`).
 
-use super::{slot, virgin_bound, PlasticDamage};
+use super::{slot, virgin_bound, virgin_bracket, PlasticDamage};
 use crate::element::lanes::{elastic_stress, F64s, VoigtLanes, LANES};
 use crate::material::{PointContext, Voigt};
 
@@ -46,17 +46,7 @@ impl PlasticDamage {
                 let (t, c) = self.element_laws(l);
                 virgin_bound(&self.surface, t.law.f0, c.law.f0)
             });
-            // The bound of `virgin_elastic`, lane by lane.
-            const THIRD: f64 = 1.0 / 3.0;
-            let i1 = eff[0] + eff[1] + eff[2];
-            let m = i1 * F64s::splat(THIRD);
-            let (a, b, c) = (eff[0] - m, eff[1] - m, eff[2] - m);
-            let ss =
-                a * a + b * b + c * c + 2.0 * (eff[3] * eff[3] + eff[4] * eff[4] + eff[5] * eff[5]);
-            let q = (1.5 * ss).sqrt();
-            let smax = m + (2.0 * THIRD) * q;
-            let bracket = self.surface.alpha * i1 + q + beta * smax.max(F64s::ZERO)
-                - self.surface.gamma * (-smax).max(F64s::ZERO);
+            let bracket = virgin_bracket(&self.surface, beta, &eff);
             std::array::from_fn(|g| candidate[g] && beta >= 0.0 && bracket[g] <= limit)
         } else {
             [false; LANES]

@@ -7,6 +7,7 @@ pub mod centred_dashpot;
 mod constraints;
 pub mod face_tensors;
 pub mod free_field;
+pub(crate) mod per_slot;
 pub mod seismic_input;
 pub mod system;
 

@@ -19,6 +19,7 @@
 use std::collections::BTreeMap;
 
 use nalgebra::Matrix3;
+use rayon::prelude::*;
 
 use crate::boundary::absorbing::{AbsorbingKind, AbsorbingSpec, FaceCoefficients};
 use crate::boundary::centred_dashpot::CentredDashpotNode;
@@ -29,12 +30,16 @@ use crate::boundary::free_field::sides::{
 };
 use crate::boundary::free_field::wall::stress_dot;
 use crate::boundary::free_field::{ColumnSpec, FreeField, FreeFieldSection};
+use crate::boundary::per_slot::PerSlot;
 use crate::boundary::seismic_input::{MotionDefinition, SeismicSection};
 use crate::error::{DcfmError, Result};
 use crate::material::{Elastic, Material};
 use crate::mesh::vertical_profile::{face_centroid, vertical_profile};
 use crate::mesh::{Face, Mesh};
 use crate::model::Model;
+
+/// Boundary nodes per parallel task in [`BoundarySystem::begin_step`].
+const SLOT_CHUNK: usize = 256;
 
 /// Which traction of the reference column a drive takes.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -85,6 +90,10 @@ pub struct BoundarySystem {
     drives: Vec<ColumnDrive>,
     wall_dashpots: Vec<WallDashpotDrive>,
     wall_tractions: Vec<WallTractionDrive>,
+    /// `drives`, `wall_dashpots` and `wall_tractions` grouped by the slot they add to.
+    drives_of: PerSlot,
+    wall_dashpots_of: PerSlot,
+    wall_tractions_of: PerSlot,
     free_field: Option<FreeField>,
     /// What each boundary is, for reports.
     pub reports: Vec<BoundaryReport>,
@@ -574,6 +583,14 @@ impl BoundarySystem {
         }
         let (dashpot, spring): (Vec<_>, Vec<_>) = per_node.into_values().unzip();
         let nb = nodes.len();
+        // Each list in slot order (stable: a slot's contributions keep their order), so
+        // that the per-slot sums of `begin_step` read the lists front to back.
+        drives.sort_by_key(|d| d.slot);
+        sides.dashpots.sort_by_key(|d| d.main_node);
+        sides.tractions.sort_by_key(|d| d.main_node);
+        let drives_of = PerSlot::new(nb, drives.iter().map(|d| d.slot));
+        let wall_dashpots_of = PerSlot::new(nb, sides.dashpots.iter().map(|d| d.main_node));
+        let wall_tractions_of = PerSlot::new(nb, sides.tractions.iter().map(|d| d.main_node));
         Ok(Some(Self {
             nodes,
             dashpot,
@@ -585,6 +602,9 @@ impl BoundarySystem {
             drives,
             wall_dashpots: sides.dashpots,
             wall_tractions: sides.tractions,
+            drives_of,
+            wall_dashpots_of,
+            wall_tractions_of,
             free_field,
             reports,
         }))
@@ -624,50 +644,71 @@ impl BoundarySystem {
         self.refresh_constant_source();
     }
 
-    /// Step the free field to tⁿ⁺¹ and compute the sources S_b at tⁿ.
+    /// Step the free field to tⁿ⁺¹ and compute the sources S_b at tⁿ: each node's sum on
+    /// its own (in parallel), its contributions in list order — the drives, then the
+    /// walls' dashpots, then the walls' tractions — so the sums do not depend on the
+    /// thread count.
     pub fn begin_step(&mut self, t: f64, dt: f64) {
-        self.source.copy_from_slice(&self.constant_source);
         let Some(ff) = self.free_field.as_mut() else {
+            self.source.copy_from_slice(&self.constant_source);
             return;
         };
         ff.step(t, dt);
+        let ff = &*ff;
         let col = &ff.columns[0];
-        for d in &self.drives {
-            let l = d.level as usize;
-            let u = nalgebra::Vector3::from(col.displacement(l));
-            let v = nalgebra::Vector3::from(col.velocity(l));
-            let t = match d.traction {
-                Traction::Below if l == 0 => col.base_traction(),
-                Traction::Below => {
-                    let s = col.stress(l - 1);
-                    [-s[5], -s[4], -s[2]]
+        let (drives, dashpots, tractions) =
+            (&self.drives, &self.wall_dashpots, &self.wall_tractions);
+        let (drives_of, dashpots_of, tractions_of) = (
+            &self.drives_of,
+            &self.wall_dashpots_of,
+            &self.wall_tractions_of,
+        );
+        let constant = &self.constant_source;
+        self.source
+            .par_chunks_mut(SLOT_CHUNK)
+            .enumerate()
+            .for_each(|(c, chunk)| {
+                for (k, s) in chunk.iter_mut().enumerate() {
+                    let b = c * SLOT_CHUNK + k;
+                    *s = constant[b];
+                    for &j in drives_of.of(b) {
+                        let d = &drives[j as usize];
+                        let l = d.level as usize;
+                        let u = nalgebra::Vector3::from(col.displacement(l));
+                        let v = nalgebra::Vector3::from(col.velocity(l));
+                        let t = match d.traction {
+                            Traction::Below if l == 0 => col.base_traction(),
+                            Traction::Below => {
+                                let s = col.stress(l - 1);
+                                [-s[5], -s[4], -s[2]]
+                            }
+                            Traction::Above => col.force_from_above(l),
+                        };
+                        let f = d.spring * u + d.dashpot * v;
+                        for k in 0..3 {
+                            s[k] += f[k] + d.area * t[k];
+                        }
+                    }
+                    for &j in dashpots_of.of(b) {
+                        let d = &dashpots[j as usize];
+                        let v = ff.walls[d.wall as usize].velocity(d.wall_node as usize);
+                        let f = d.dashpot * nalgebra::Vector3::from(v);
+                        for k in 0..3 {
+                            s[k] += f[k];
+                        }
+                    }
+                    for &j in tractions_of.of(b) {
+                        let d = &tractions[j as usize];
+                        let w = &ff.walls[d.wall as usize];
+                        for (q, a) in d.weights.iter().enumerate() {
+                            let t = stress_dot(&w.stress(d.element as usize, q), a);
+                            for k in 0..3 {
+                                s[k] += t[k];
+                            }
+                        }
+                    }
                 }
-                Traction::Above => col.force_from_above(l),
-            };
-            let f = d.spring * u + d.dashpot * v;
-            let s = &mut self.source[d.slot as usize];
-            for k in 0..3 {
-                s[k] += f[k] + d.area * t[k];
-            }
-        }
-        for d in &self.wall_dashpots {
-            let v = ff.walls[d.wall as usize].velocity(d.wall_node as usize);
-            let f = d.dashpot * nalgebra::Vector3::from(v);
-            let s = &mut self.source[d.main_node as usize];
-            for k in 0..3 {
-                s[k] += f[k];
-            }
-        }
-        for d in &self.wall_tractions {
-            let w = &ff.walls[d.wall as usize];
-            let s = &mut self.source[d.main_node as usize];
-            for (q, a) in d.weights.iter().enumerate() {
-                let t = stress_dot(&w.stress(d.element as usize, q), a);
-                for k in 0..3 {
-                    s[k] += t[k];
-                }
-            }
-        }
+            });
     }
 
     /// S_b of the current step.

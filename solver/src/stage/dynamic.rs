@@ -460,6 +460,8 @@ impl Simulation {
                 }
             });
         let n = self.u.len();
+        let boundaries = self.model.boundaries.as_ref();
+        let boundary_slot = &self.boundary_slot;
         self.u_next
             .par_chunks_mut(NODE_CHUNK)
             .zip(self.v_next.par_chunks_mut(NODE_CHUNK))
@@ -485,8 +487,17 @@ impl Simulation {
                     } else if kind == 0 {
                         ctx.predict_free(i, ui, vi, &mut out.parts);
                     } else if kind & BOUNDARY_NODE != 0 {
-                        // Updated in the boundary pass below.
-                        continue;
+                        // A boundary node: the leapfrog with the boundary forces and the
+                        // centred dashpot (a contact force is added in step 5).
+                        let bs = boundaries.expect("boundary nodes come with boundaries");
+                        let b = boundary_slot[i] as usize;
+                        let (u_b, v_b, p) = ctx.boundary_node(i, bs, b, &[0.0; 3]);
+                        *ui = u_b;
+                        *vi = v_b;
+                        for (s, x) in out.parts.iter_mut().zip(p) {
+                            *s += x;
+                        }
+                        step_v = dt;
                     } else {
                         ctx.predict(i, ui, vi);
                         let p = ctx.energy_parts(i, vi, &[0.0; 3]);
@@ -538,29 +549,6 @@ impl Simulation {
                     let (ue, v) = (s.u_end[i], self.v_next[i]);
                     std::array::from_fn(|d| ue[d] - tau * v[d])
                 };
-            }
-        }
-        // 3b. Boundary nodes: predictor with the boundary forces and the centred dashpots.
-        let mut boundary_parts: EnergyParts = [0.0; 13];
-        let mut boundary_worst: Option<(u32, bool, f64)> = None;
-        if let Some(bs) = self.model.boundaries.as_ref() {
-            for (b, &i) in bs.nodes.iter().enumerate() {
-                let i = i as usize;
-                let (un, vn, p) = ctx.boundary_node(i, bs, b, &[0.0; 3]);
-                self.u_next[i] = un;
-                self.v_next[i] = vn;
-                self.a[i] = std::array::from_fn(|d| (vn[d] - ctx.v[i][d]) / dt);
-                for k in 0..13 {
-                    boundary_parts[k] += p[k];
-                }
-                let vm = vn[0].abs().max(vn[1].abs()).max(vn[2].abs());
-                if !vm.is_finite() || !un.iter().all(|x| x.is_finite()) {
-                    if !boundary_worst.is_some_and(|w| w.1) {
-                        boundary_worst = Some((i as u32, true, f64::NAN));
-                    }
-                } else if boundary_worst.is_none_or(|w| !w.1 && vm > w.2) {
-                    boundary_worst = Some((i as u32, false, vm));
-                }
             }
         }
         // 4. Contact forces Rⁿ from the predictor (eqs. 5–22).
@@ -635,14 +623,9 @@ impl Simulation {
             }
         }
         for k in 0..13 {
-            parts[k] += boundary_parts[k] + contact_fix[k];
+            parts[k] += contact_fix[k];
         }
         parts[0] += sub_kinetic;
-        if let Some(bw) = boundary_worst {
-            if bw.1 || worst.is_none_or(|w| !w.1 && bw.2 > w.2) {
-                worst = Some(bw);
-            }
-        }
         let e = &mut self.energies;
         e.advance(&parts);
         if let Some((node, true, _)) = worst {

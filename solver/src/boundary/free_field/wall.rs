@@ -20,11 +20,15 @@ use rayon::prelude::*;
 
 use crate::boundary::centred_dashpot::CentredDashpotNode;
 use crate::boundary::free_field::column::Column;
+use crate::boundary::per_slot::PerSlot;
 use crate::material::{Elastic, Voigt};
 
 /// Smallest number of wall elements one parallel task takes (below it the split costs
 /// more than it saves).
 const ELEMENTS_PER_TASK: usize = 256;
+
+/// Wall nodes per parallel task of the node passes.
+const NODES_PER_TASK: usize = 512;
 
 /// One Gauss point of a wall element.
 #[derive(Clone, Copy, Debug)]
@@ -108,6 +112,8 @@ pub struct Wall {
     /// parallel and then added to the nodes in element order (thread-count independent).
     element_force: Vec<[[f64; 3]; 4]>,
     element_damping: Vec<[[f64; 3]; 4]>,
+    /// The (element, corner) pairs `4 e + k` of each node, in element order.
+    node_corners: PerSlot,
 }
 
 /// Strain (Voigt, engineering shear) from displacement gradients ∂u_i/∂x_j.
@@ -215,6 +221,7 @@ impl Wall {
             *a /= m;
         }
         let ne = elements.len();
+        let node_corners = PerSlot::new(n, elements.iter().flat_map(|c| c.iter().copied()));
         Self {
             name,
             normal,
@@ -241,6 +248,7 @@ impl Wall {
             source: vec![[0.0; 3]; n],
             element_force: vec![[[0.0; 3]; 4]; ne],
             element_damping: vec![[[0.0; 3]; 4]; ne],
+            node_corners,
         }
     }
 
@@ -334,12 +342,7 @@ impl Wall {
 
     /// One step tⁿ → tⁿ⁺¹; `columns` hold the columns' state at tⁿ (already stepped).
     pub fn step(&mut self, columns: &[Column], dt: f64) {
-        for f in self
-            .f_int
-            .iter_mut()
-            .chain(self.f_damp.iter_mut())
-            .chain(self.source.iter_mut())
-        {
+        for f in self.source.iter_mut() {
             *f = [0.0; 3];
         }
         // Element forces in parallel (each element writes only its own slots) …
@@ -362,23 +365,31 @@ impl Wall {
                     *fd = f.map(|fk| fk.map(|x| beta * x));
                 }
             });
-        // … added to the nodes serially in element order: the same sums on any thread count.
-        for (e, conn) in self.elements.iter().enumerate() {
-            let fe = &self.element_force[e];
-            for k in 0..4 {
-                for d in 0..3 {
-                    self.f_int[conn[k] as usize][d] += fe[k][d];
-                }
-            }
-            if self.damping[e].1 > 0.0 {
-                let fd = &self.element_damping[e];
-                for k in 0..4 {
-                    for d in 0..3 {
-                        self.f_damp[conn[k] as usize][d] += fd[k][d];
+        // … added to the nodes in element order, each node on its own: the same sums on
+        // any thread count.
+        let (ef, ed, damping) = (&self.element_force, &self.element_damping, &self.damping);
+        let corners = &self.node_corners;
+        self.f_int
+            .par_chunks_mut(NODES_PER_TASK)
+            .zip(self.f_damp.par_chunks_mut(NODES_PER_TASK))
+            .enumerate()
+            .for_each(|(c, (fi, fd))| {
+                for (k, (fi, fd)) in fi.iter_mut().zip(fd).enumerate() {
+                    *fi = [0.0; 3];
+                    *fd = [0.0; 3];
+                    for &ek in corners.of(c * NODES_PER_TASK + k) {
+                        let (e, k) = (ek as usize / 4, ek as usize % 4);
+                        for d in 0..3 {
+                            fi[d] += ef[e][k][d];
+                        }
+                        if damping[e].1 > 0.0 {
+                            for d in 0..3 {
+                                fd[d] += ed[e][k][d];
+                            }
+                        }
                     }
                 }
-            }
-        }
+            });
         // Column-driven forces on the linked nodes.
         for l in &self.links {
             let col = &columns[l.column as usize];
@@ -408,30 +419,38 @@ impl Wall {
         }
         self.u_prev.copy_from_slice(&self.u);
         self.v_prev.copy_from_slice(&self.v);
-        for i in 0..self.n_nodes() {
-            let m = self.mass[i];
-            let slot = self.link_slot[i];
-            let mut force: [f64; 3] = std::array::from_fn(|d| {
-                self.source[i][d]
-                    - self.f_int[i][d]
-                    - self.f_damp[i][d]
-                    - self.alpha[i] * m * self.v_prev[i][d]
-            });
-            let vn = if slot == u32::MAX {
-                std::array::from_fn(|d| self.v_prev[i][d] + dt * force[d] / m)
-            } else {
-                let s = slot as usize;
-                let ku = self.link_spring[s] * Vector3::from(self.u_prev[i]);
-                for d in 0..3 {
-                    force[d] -= ku[d];
+        let (mass, link_slot, alpha) = (&self.mass, &self.link_slot, &self.alpha);
+        let (source, f_int, f_damp) = (&self.source, &self.f_int, &self.f_damp);
+        let (u_prev, v_prev) = (&self.u_prev, &self.v_prev);
+        let (link_spring, updates) = (&self.link_spring, &self.updates);
+        self.u
+            .par_chunks_mut(NODES_PER_TASK)
+            .zip(self.v.par_chunks_mut(NODES_PER_TASK))
+            .enumerate()
+            .for_each(|(c, (us, vs))| {
+                for (k, (u, v)) in us.iter_mut().zip(vs).enumerate() {
+                    let i = c * NODES_PER_TASK + k;
+                    let m = mass[i];
+                    let slot = link_slot[i];
+                    let mut force: [f64; 3] = std::array::from_fn(|d| {
+                        source[i][d] - f_int[i][d] - f_damp[i][d] - alpha[i] * m * v_prev[i][d]
+                    });
+                    let vn = if slot == u32::MAX {
+                        std::array::from_fn(|d| v_prev[i][d] + dt * force[d] / m)
+                    } else {
+                        let s = slot as usize;
+                        let ku = link_spring[s] * Vector3::from(u_prev[i]);
+                        for d in 0..3 {
+                            force[d] -= ku[d];
+                        }
+                        updates[s].half_step_velocity(v_prev[i], force, [0.0; 3], dt)
+                    };
+                    *v = vn;
+                    for d in 0..3 {
+                        u[d] += dt * vn[d];
+                    }
                 }
-                self.updates[s].half_step_velocity(self.v_prev[i], force, [0.0; 3], dt)
-            };
-            self.v[i] = vn;
-            for d in 0..3 {
-                self.u[i][d] += dt * vn[d];
-            }
-        }
+            });
     }
 
     /// Displacement of wall node `i` at tⁿ of the last step.

@@ -2,6 +2,7 @@
 //! build the model, warm up, time steps until a minimum wall time has passed, and emit one
 //! [`ThroughputRecord`] (optionally appended to the history file).
 
+use dcfm::stage::static_stage::linear_solver::LinearSolverChoice;
 use std::path::PathBuf;
 use std::time::{Duration, Instant};
 
@@ -107,15 +108,16 @@ impl RunConfig {
         }
     }
 
-    /// The static cases to run (names `static_cholesky_cube{n}`), filter applied.
-    pub fn static_cases(&self) -> Vec<usize> {
+    /// The static cases to run (names `static_cholesky_cube{n}`, `static_cg_cube{n}`),
+    /// filter applied.
+    pub fn static_cases(&self) -> Vec<(usize, LinearSolverChoice)> {
         self.static_sizes
             .iter()
-            .copied()
-            .filter(|&n| {
+            .flat_map(|&n| crate::static_solve::SOLVERS.map(|s| (n, s)))
+            .filter(|&(n, s)| {
                 self.filter
                     .as_deref()
-                    .is_none_or(|f| crate::static_solve::case_name(n).contains(f))
+                    .is_none_or(|f| crate::static_solve::case_name(n, s).contains(f))
             })
             .collect()
     }
@@ -439,17 +441,18 @@ pub fn run_with_notes(
         }
     }
     let threads = config.threads.iter().copied().max().unwrap_or(1);
-    for n in config.static_cases() {
+    for (n, solver) in config.static_cases() {
         let pool = rayon::ThreadPoolBuilder::new()
             .num_threads(threads)
             .build()?;
         let reset = memory::reset_peak_rss();
         let cpu0 = cputime::process_cpu_seconds();
-        let (timing, wall_s, nodes) = pool.install(|| crate::static_solve::time_static_solve(n))?;
+        let (timing, wall_s, nodes) =
+            pool.install(|| crate::static_solve::time_static_solve(n, solver))?;
         let cpu_s = cputime::process_cpu_seconds().zip(cpu0).map(|(b, a)| b - a);
         let elements = n * n * n;
         let record = ThroughputRecord {
-            case: crate::static_solve::case_name(n),
+            case: crate::static_solve::case_name(n, solver),
             elements,
             nodes,
             integration: Integration::Full.name().to_string(),

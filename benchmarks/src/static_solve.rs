@@ -1,12 +1,14 @@
-//! The static-stage row of the throughput runner (issue #7): the sparse direct solve of an
-//! elastic n³ cube under its own weight (fully integrated elements, base fixed), timed in
-//! its three phases — assembly of K, Cholesky factorisation (AMD ordering included),
-//! forward/back solve — with the sizes of K and L and the process's peak memory.
+//! The static-stage rows of the throughput runner (issue #7): the direct step of an elastic
+//! n³ cube under its own weight (fully integrated elements, base fixed), solved with the
+//! Cholesky factor — timed in its three phases, assembly of K, factorisation (orderings
+//! included), forward/back solve — and with conjugate gradients (assembly, iterations),
+//! with the sizes of K and L and the process's peak memory.
 
 use serde::{Deserialize, Serialize};
 
 use dcfm::element::Integration;
 use dcfm::load::{Gravity, TimeFunction};
+use dcfm::stage::static_stage::linear_solver::LinearSolverChoice;
 use dcfm::stage::static_stage::{self, Convergence, InSitu, StaticPlan, StepSolver};
 
 use crate::cube::CubeSpec;
@@ -23,6 +25,9 @@ pub struct StaticSolveTiming {
     pub factor_nonzeros: usize,
     /// faer's supernodal factorisation (else simplicial).
     pub supernodal: bool,
+    /// Conjugate-gradient iterations (the conjugate-gradient row).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub cg_iterations: Option<usize>,
     /// Seconds in the assembly of K, the factorisation and the solve.
     pub assembly_s: f64,
     pub factorization_s: f64,
@@ -41,14 +46,27 @@ pub fn peak_rss_bytes() -> Option<u64> {
     crate::memory::peak_rss_bytes()
 }
 
-/// Case name of the static row of an n³ cube.
-pub fn case_name(n: usize) -> String {
-    format!("static_cholesky_cube{n}")
+/// The linear solvers the static rows time, in run order.
+pub const SOLVERS: [LinearSolverChoice; 2] = [
+    LinearSolverChoice::Cholesky,
+    LinearSolverChoice::ConjugateGradients,
+];
+
+/// Case name of the static row of an n³ cube solved by `solver`.
+pub fn case_name(n: usize, solver: LinearSolverChoice) -> String {
+    match solver {
+        LinearSolverChoice::ConjugateGradients => format!("static_cg_cube{n}"),
+        _ => format!("static_cholesky_cube{n}"),
+    }
 }
 
-/// Build the n³ cube, solve it statically under gravity with the direct solver and return
-/// the timing (and the wall time of the whole static stage, model building excluded).
-pub fn time_static_solve(n: usize) -> Result<(StaticSolveTiming, f64, usize), BenchError> {
+/// Build the n³ cube, solve it statically under gravity in one direct step with `solver`
+/// and return the timing (and the wall time of the whole static stage, model building
+/// excluded).
+pub fn time_static_solve(
+    n: usize,
+    solver: LinearSolverChoice,
+) -> Result<(StaticSolveTiming, f64, usize), BenchError> {
     let spec = CubeSpec::new(n, Integration::Full);
     let mut model = spec.model()?;
     model.initial_velocity.clear();
@@ -58,6 +76,7 @@ pub fn time_static_solve(n: usize) -> Result<(StaticSolveTiming, f64, usize), Be
     });
     let nodes = model.mesh.n_nodes();
     let mut plan = StaticPlan::new(model.constraints.clone());
+    plan.linear.choice = solver;
     plan.in_situ = InSitu::Gravity {
         solver: StepSolver::Direct,
         convergence: Convergence::default(),
@@ -72,6 +91,8 @@ pub fn time_static_solve(n: usize) -> Result<(StaticSolveTiming, f64, usize), Be
             stiffness_nonzeros: s.stiffness_nonzeros,
             factor_nonzeros: s.factor_nonzeros,
             supernodal: s.supernodal,
+            cg_iterations: (solver == LinearSolverChoice::ConjugateGradients)
+                .then_some(s.iterations),
             assembly_s: s.seconds[0],
             factorization_s: s.seconds[1],
             solve_s: s.seconds[2],

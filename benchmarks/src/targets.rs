@@ -229,11 +229,13 @@ pub fn check(records: &[ThroughputRecord]) -> Vec<TargetCheck> {
             machine_busy: starved(r),
         });
     }
-    if let Some(r) = records
-        .iter()
-        .rev()
-        .find(|r| r.case == crate::static_solve::case_name(40))
-    {
+    if let Some(r) = records.iter().rev().find(|r| {
+        r.case
+            == crate::static_solve::case_name(
+                40,
+                dcfm::stage::static_stage::linear_solver::LinearSolverChoice::Cholesky,
+            )
+    }) {
         out.push(TargetCheck {
             target: format!(
                 "{}: static stage (assembly + Cholesky + solve) <= {STATIC_CHOLESKY_40_SECONDS} s",

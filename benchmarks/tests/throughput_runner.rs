@@ -287,11 +287,24 @@ fn static_row_reports_the_three_phases_and_the_sizes() {
         .iter()
         .find(|r| r.case == "static_cholesky_cube4")
         .expect("static row");
-    assert_eq!(records.len(), 1, "one thread count for the static row");
+    let names: Vec<&str> = records.iter().map(|r| r.case.as_str()).collect();
+    assert_eq!(
+        names,
+        ["static_cholesky_cube4", "static_cg_cube4"],
+        "one thread count for each static row"
+    );
     let s = r.static_solve.as_ref().expect("static timing");
     // 5³ nodes, the base's 25 fixed: 100 free nodes, 300 equations.
     assert_eq!(s.equations, 300);
     assert!(s.factor_nonzeros >= s.stiffness_nonzeros);
+    assert_eq!(s.cg_iterations, None);
+    // The conjugate-gradient row: the same equations, no factor, its iterations (at most
+    // one per equation in exact arithmetic; the tolerance is reached well before).
+    let cg = records[1].static_solve.as_ref().expect("cg timing");
+    assert_eq!(cg.equations, 300);
+    assert_eq!(cg.factor_nonzeros, 0);
+    let iterations = cg.cg_iterations.expect("cg iterations");
+    assert!(iterations > 1 && iterations < 300, "{iterations}");
     assert!(s.assembly_s >= 0.0 && s.factorization_s >= 0.0 && s.solve_s >= 0.0);
     assert!(s.assembly_s + s.factorization_s + s.solve_s <= r.wall_s);
     let line = r.to_json_line();

@@ -83,6 +83,10 @@ fn bad_values_are_named() {
         ("solver = \"direct\"", "solver = \"direct\"\ntolerance = 2.0", "static.tolerance = 2"),
         ("solver = \"direct\"", "solver = \"direct\"\nmax_iterations = 0", "static.max_iterations = 0"),
         ("solver = \"direct\"", "solver = \"gauss\"", "solver"),
+        ("solver = \"direct\"", "solver = \"direct\"\nlinear_solver = \"lu\"", "linear_solver"),
+        ("solver = \"direct\"", "solver = \"direct\"\nfactor_memory_limit = -2.0", "static.factor_memory_limit = -2"),
+        ("solver = \"direct\"", "solver = \"direct\"\ncg_tolerance = 0.0", "static.cg_tolerance = 0"),
+        ("solver = \"direct\"", "solver = \"direct\"\ncg_max_iterations = 0", "static.cg_max_iterations = 0"),
         (
             "name = \"gallery\"\nexcavate",
             "name = \"gallery\"\nsubsteps = 0\nexcavate",

@@ -117,6 +117,16 @@ fn main() -> ExitCode {
         println!("{}", r.to_json_line());
         let _ = std::io::stdout().flush();
         if let Some(s) = &r.static_solve {
+            let peak = s
+                .peak_rss_bytes
+                .map_or("n/a".to_string(), |b| format!("{:.2} GB", b as f64 / 1e9));
+            if let Some(iterations) = s.cg_iterations {
+                eprintln!(
+                    "{:<22} {} equations: assembly {:.2} s, conjugate gradients {} iterations in {:.2} s; static stage {:.2} s; peak memory {}",
+                    r.case, s.equations, s.assembly_s, iterations, s.factorization_s, r.wall_s, peak
+                );
+                return;
+            }
             eprintln!(
                 "{:<22} {} equations: assembly {:.2} s, factorisation {:.2} s ({}, L {:.3e} nonzeros, {:.2} GB), solve {:.3} s; static stage {:.2} s; peak memory {}",
                 r.case,
@@ -128,8 +138,7 @@ fn main() -> ExitCode {
                 s.factor_bytes as f64 / 1e9,
                 s.solve_s,
                 r.wall_s,
-                s.peak_rss_bytes
-                    .map_or("n/a".to_string(), |b| format!("{:.2} GB", b as f64 / 1e9))
+                peak
             );
             return;
         }

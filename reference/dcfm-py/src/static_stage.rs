@@ -126,6 +126,16 @@ pub fn result_dict<'py>(
         sd.set_item("equations", s.equations)?;
         sd.set_item("stiffness_nonzeros", s.stiffness_nonzeros)?;
         sd.set_item("factor_nonzeros", s.factor_nonzeros)?;
+        let linear = match s.linear_solver {
+            Some(dcfm::stage::static_stage::linear_solver::LinearSolverChoice::Cholesky) => {
+                Some("cholesky")
+            }
+            Some(
+                dcfm::stage::static_stage::linear_solver::LinearSolverChoice::ConjugateGradients,
+            ) => Some("conjugate_gradients"),
+            _ => None,
+        };
+        sd.set_item("linear_solver", linear)?;
         sd.set_item("seconds", s.seconds.to_vec())?;
         steps.append(sd)?;
     }

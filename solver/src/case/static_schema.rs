@@ -5,6 +5,7 @@
 use serde::Deserialize;
 
 use crate::case::schema::FixedSection;
+use crate::stage::static_stage::linear_solver::LinearSolverChoice;
 use crate::stage::static_stage::{RelaxationDamping, StepSolver};
 
 /// `[static]`.
@@ -29,6 +30,19 @@ pub struct StaticSection {
     /// Start each relaxation from the direct elastic solution where possible (default true).
     #[serde(default)]
     pub predictor: Option<bool>,
+    /// Linear solver of the direct steps and of the predictor: "auto" (default: Cholesky
+    /// when its factor fits `factor_memory_limit`), "cholesky" or "conjugate_gradients".
+    #[serde(default)]
+    pub linear_solver: Option<LinearSolverChoice>,
+    /// Largest Cholesky factor "auto" accepts, GiB (default 4).
+    #[serde(default)]
+    pub factor_memory_limit: Option<f64>,
+    /// Relative residual the conjugate gradients reach (default 1e-10).
+    #[serde(default)]
+    pub cg_tolerance: Option<f64>,
+    /// Most conjugate-gradient iterations per solve (default 50000).
+    #[serde(default)]
+    pub cg_max_iterations: Option<usize>,
     /// Relaxation iterations between two rows of static_histories.csv (default 10).
     #[serde(default)]
     pub history_every: Option<usize>,

@@ -8,6 +8,7 @@ use crate::case::static_schema::*;
 use crate::case::DamagedVolumeMeasure;
 use crate::error::{DcfmError, Result};
 use crate::model::Model;
+use crate::stage::static_stage::linear_solver::{LinearSettings, GIB};
 use crate::stage::static_stage::{
     Convergence, ElementSet, InSitu, Layer, RelaxationSettings, StaticLoad, StaticPlan, StaticStep,
     StepSolver, StressProfile, TablePoint,
@@ -512,6 +513,43 @@ fn bonded_interface(model: &Model, label: &str, field: &str, name: &str) -> Resu
         })
 }
 
+/// `linear_solver`, `factor_memory_limit`, `cg_tolerance`, `cg_max_iterations`.
+fn linear_settings(s: &StaticSection, label: &str) -> Result<LinearSettings> {
+    let mut linear = LinearSettings::default();
+    if let Some(c) = s.linear_solver {
+        linear.choice = c;
+    }
+    if let Some(g) = s.factor_memory_limit {
+        if !(g.is_finite() && g > 0.0) {
+            return Err(DcfmError::invalid(
+                label,
+                "static.factor_memory_limit",
+                g,
+                "a size in GiB > 0",
+            ));
+        }
+        linear.factor_memory_limit = g * GIB;
+    }
+    if let Some(t) = s.cg_tolerance {
+        if !(t.is_finite() && t > 0.0 && t < 1.0) {
+            return Err(DcfmError::invalid(
+                label,
+                "static.cg_tolerance",
+                t,
+                "a relative residual in (0, 1)",
+            ));
+        }
+        linear.cg.tolerance = t;
+    }
+    linear.cg.max_iterations = iterations(
+        label,
+        "static.cg_max_iterations",
+        s.cg_max_iterations,
+        linear.cg.max_iterations,
+    )?;
+    Ok(linear)
+}
+
 /// The plan of `[static]`, or `None` when the case has no static stage.
 pub(super) fn build_static(
     model: &Model,
@@ -540,6 +578,7 @@ pub(super) fn build_static(
     relaxation.history_every = iterations(label, "static.history_every", s.history_every, 10)?;
     let mut plan = StaticPlan::new(constraints(model, s.fixed.as_deref(), label)?);
     plan.relaxation = relaxation;
+    plan.linear = linear_settings(s, label)?;
     plan.damage_threshold = output.damage_threshold;
     plan.damage_per_element = output.damaged_volume == DamagedVolumeMeasure::Element;
     for (k, l) in s.loads.iter().enumerate() {

@@ -10,6 +10,7 @@ use std::io::Write;
 use super::activation::Activation;
 use super::forces::OutOfBalance;
 use super::history::HistoryRow;
+use super::linear_solver::LinearSolverChoice;
 use super::plan::{StaticPlan, StepSolver};
 use super::result::{StaticResult, StepReport};
 use crate::error::{DcfmError, Result};
@@ -120,7 +121,14 @@ pub fn write_static_block(
         put_u64(w, s.equations as u64)?;
         put_u64(w, s.stiffness_nonzeros as u64)?;
         put_u64(w, s.factor_nonzeros as u64)?;
-        put_u64(w, u64::from(s.supernodal))?;
+        // 0 / 1: Cholesky simplicial / supernodal (or a relaxation step), 2: conjugate
+        // gradients (its iterations in `iterations`).
+        let code = if s.linear_solver == Some(LinearSolverChoice::ConjugateGradients) {
+            2
+        } else {
+            u64::from(s.supernodal)
+        };
+        put_u64(w, code)?;
         put_f64s(w, &s.seconds)?;
     }
     put_u64(w, result.history.len() as u64)?;
@@ -256,7 +264,13 @@ pub fn read_static_block(
         let equations = r.u64()? as usize;
         let stiffness_nonzeros = r.u64()? as usize;
         let factor_nonzeros = r.u64()? as usize;
-        let supernodal = r.u64()? == 1;
+        let code = r.u64()?;
+        let supernodal = code == 1;
+        let linear_solver = match (solver, code) {
+            (StepSolver::Relaxation, _) => None,
+            (_, 2) => Some(LinearSolverChoice::ConjugateGradients),
+            _ => Some(LinearSolverChoice::Cholesky),
+        };
         let t = r.f64s(3)?;
         steps.push(StepReport {
             name,
@@ -270,6 +284,7 @@ pub fn read_static_block(
             stiffness_nonzeros,
             factor_nonzeros,
             supernodal,
+            linear_solver,
             seconds: [t[0], t[1], t[2]],
         });
     }

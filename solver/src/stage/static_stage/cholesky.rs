@@ -133,11 +133,17 @@ fn symbolic(
     .map_err(|e| FactorError::Resource(format!("symbolic Cholesky: {e:?}")))
 }
 
-impl Factorization {
-    /// Order, analyse and factorise `k` (upper triangle).
+/// The ordering and the symbolic factorisation of a stiffness: the size of the factor is
+/// known before any number of it is computed.
+pub struct Analysis {
+    symbolic: SymbolicCholesky<usize>,
+    fwd: Vec<usize>,
+    ordering: Ordering,
+}
+
+impl Analysis {
+    /// Order and analyse `k` (upper triangle).
     pub fn new(k: &Stiffness, kind: CholeskyKind) -> Result<Self, FactorError> {
-        let n = k.n;
-        let pattern = SymbolicSparseColMatRef::new_checked(n, n, &k.col_ptr, None, &k.row_idx);
         // The ordering that fills less: AMD or nested dissection (both on the node graph).
         let (fwd_a, inv_a) = node_amd_permutation(k)?;
         let sym_a = symbolic(k, &fwd_a, &inv_a, kind)?;
@@ -149,6 +155,27 @@ impl Factorization {
         } else {
             (sym_a, fwd_a, Ordering::MinimumDegree)
         };
+        Ok(Self {
+            symbolic,
+            fwd,
+            ordering,
+        })
+    }
+
+    /// Nonzeros of L (8 bytes each).
+    pub fn l_nnz(&self) -> usize {
+        self.symbolic.len_val()
+    }
+
+    /// Factorise `k` (the stiffness analysed).
+    pub fn factorize(self, k: &Stiffness) -> Result<Factorization, FactorError> {
+        let Self {
+            symbolic,
+            fwd,
+            ordering,
+        } = self;
+        let n = k.n;
+        let pattern = SymbolicSparseColMatRef::new_checked(n, n, &k.col_ptr, None, &k.row_idx);
         let mut values = vec![0.0; symbolic.len_val()];
         let par = Par::Seq;
         let req = symbolic.factorize_numeric_llt_scratch::<f64>(par, Spec::default());
@@ -181,7 +208,7 @@ impl Factorization {
                 ratio: f64::NAN,
             });
         }
-        let fact = Self {
+        let fact = Factorization {
             l_nnz: values.len(),
             symbolic,
             values,
@@ -204,6 +231,13 @@ impl Factorization {
             return Err(FactorError::Pivot { eq, ratio });
         }
         Ok(fact)
+    }
+}
+
+impl Factorization {
+    /// Order, analyse and factorise `k` (upper triangle).
+    pub fn new(k: &Stiffness, kind: CholeskyKind) -> Result<Self, FactorError> {
+        Analysis::new(k, kind)?.factorize(k)
     }
 
     /// L_jj in the permuted order.

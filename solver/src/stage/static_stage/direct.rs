@@ -5,9 +5,11 @@
 //! break.
 
 use super::assembly::assemble;
-use super::cholesky::{CholeskyKind, FactorError, Factorization};
+use super::cholesky::FactorError;
+use super::conjugate_gradients::CgError;
 use super::dofs::DofMap;
 use super::forces::{commit_states, ForceBuffers, OutOfBalance};
+use super::linear_solver::{self, LinearSettings, LinearSolveError, LinearSolverUsed};
 use super::restraint::check_restrained;
 use crate::contact::geom::{dot, norm, tangential};
 use crate::contact::PairState;
@@ -21,13 +23,13 @@ pub struct DirectOutcome {
     /// Out-of-balance before and after.
     pub before: OutOfBalance,
     pub after: OutOfBalance,
-    /// Equations, stored nonzeros of K (upper triangle) and of L.
+    /// Equations and stored nonzeros of K (upper triangle).
     pub equations: usize,
     pub k_nnz: usize,
-    pub l_nnz: usize,
-    /// faer chose the supernodal factorisation (else simplicial).
-    pub supernodal: bool,
-    /// Seconds spent in assembly, factorisation and solve.
+    /// The linear solver used (Cholesky: nonzeros of L, supernodal or simplicial;
+    /// conjugate gradients: iterations).
+    pub linear: LinearSolverUsed,
+    /// Seconds spent in assembly, factorisation (or the iterations) and solve.
     pub seconds: [f64; 3],
 }
 
@@ -84,6 +86,7 @@ pub fn solve(
     f_ext: &[[f64; 3]],
     dormant: &[bool],
     bufs: &mut ForceBuffers,
+    linear: &LinearSettings,
     step: &str,
 ) -> Result<DirectOutcome> {
     let fail = |message: String| DcfmError::Static {
@@ -105,23 +108,6 @@ pub fn solve(
     let t0 = std::time::Instant::now();
     let k = assemble(model, &dofs);
     let t1 = std::time::Instant::now();
-    let fact = Factorization::new(&k, CholeskyKind::Auto).map_err(|e| match e {
-        FactorError::Pivot { eq, ratio } => {
-            let (node, d) = dofs.owner[eq];
-            let x = model.mesh.coords[node as usize];
-            fail(format!(
-                "stiffness not positive definite at node {node} ({}) at ({:.4}, {:.4}, {:.4}): \
-                 pivot / diagonal = {ratio:.3e}; nothing holds this DOF (a mechanism, a node or \
-                 body free to move)",
-                ["x", "y", "z"][d as usize],
-                x[0],
-                x[1],
-                x[2]
-            ))
-        }
-        FactorError::Resource(m) => fail(m),
-    })?;
-    let t2 = std::time::Instant::now();
     let mut rhs = vec![0.0; dofs.n_eq];
     let r: Vec<[f64; 3]> = f_ext
         .iter()
@@ -129,7 +115,46 @@ pub fn solve(
         .map(|(e, i)| std::array::from_fn(|d| e[d] - i[d]))
         .collect();
     dofs.gather(&r, &mut rhs);
-    fact.solve_in_place(&mut rhs);
+    let at_equation = |eq: usize| {
+        let (node, d) = dofs.owner[eq];
+        let x = model.mesh.coords[node as usize];
+        format!(
+            "at node {node} ({}) at ({:.4}, {:.4}, {:.4})",
+            ["x", "y", "z"][d as usize],
+            x[0],
+            x[1],
+            x[2]
+        )
+    };
+    let (used, times) =
+        linear_solver::solve_in_place(&k, &mut rhs, linear).map_err(|e| match e {
+            LinearSolveError::Factor(FactorError::Pivot { eq, ratio }) => fail(format!(
+            "stiffness not positive definite {}: pivot / diagonal = {ratio:.3e}; nothing holds \
+             this DOF (a mechanism, a node or body free to move)",
+            at_equation(eq)
+        )),
+            LinearSolveError::Factor(FactorError::Resource(m)) => fail(m),
+            LinearSolveError::Iterative(CgError::NotPositiveDefinite { iteration, eq }) => {
+                fail(format!(
+                    "conjugate gradients: the stiffness is not positive definite ({}); nothing \
+                 holds some DOFs (a mechanism, a node or body free to move)",
+                    match eq {
+                        Some(eq) => format!("the diagonal block {}", at_equation(eq)),
+                        None => format!("pᵀKp ≤ 0 at iteration {iteration}"),
+                    }
+                ))
+            }
+            LinearSolveError::Iterative(CgError::NotConverged {
+                iterations,
+                relative_residual,
+            }) => fail(format!(
+                "conjugate gradients reached a relative residual of {relative_residual:.3e} in \
+             {iterations} iterations, not static.cg_tolerance = {:.1e}: raise \
+             static.cg_max_iterations, or set static.linear_solver = \"cholesky\" where its \
+             factor fits in memory",
+                linear.cg.tolerance
+            )),
+        })?;
     if let Some(bad) = rhs.iter().position(|x| !x.is_finite()) {
         let (node, d) = dofs.owner[bad];
         return Err(fail(format!(
@@ -138,7 +163,6 @@ pub fn solve(
         )));
     }
     dofs.scatter_add(&rhs, u);
-    let t3 = std::time::Instant::now();
     bufs.internal_forces(model, u);
     commit_states(model);
     let after = OutOfBalance::measure(&dofs, f_ext, &bufs.f_int, &mut scratch);
@@ -148,13 +172,8 @@ pub fn solve(
         after,
         equations: dofs.n_eq,
         k_nnz: k.nnz(),
-        l_nnz: fact.l_nnz,
-        supernodal: fact.supernodal,
-        seconds: [
-            (t1 - t0).as_secs_f64(),
-            (t2 - t1).as_secs_f64(),
-            (t3 - t2).as_secs_f64(),
-        ],
+        linear: used,
+        seconds: [(t1 - t0).as_secs_f64(), times[0], times[1]],
     })
 }
 

@@ -26,11 +26,13 @@ pub mod activation;
 pub mod assembly;
 pub mod checkpoint;
 pub mod cholesky;
+pub mod conjugate_gradients;
 pub mod direct;
 pub mod dofs;
 pub mod forces;
 pub mod history;
 pub mod in_situ;
+pub mod linear_solver;
 pub mod loads;
 pub mod nested_dissection;
 pub mod plan;
@@ -41,6 +43,7 @@ pub mod result;
 pub use activation::Activation;
 pub use forces::OutOfBalance;
 pub use history::HistoryRow;
+use linear_solver::{LinearSolverChoice, LinearSolverUsed};
 pub use plan::{
     Convergence, ElementSet, InSitu, Layer, RelaxationDamping, RelaxationSettings, StaticLoad,
     StaticPlan, StaticStep, StepSolver, StressProfile, TablePoint,
@@ -110,11 +113,20 @@ fn solve_step(
         stiffness_nonzeros: 0,
         factor_nonzeros: 0,
         supernodal: false,
+        linear_solver: None,
         seconds: [0.0; 3],
     };
     match solver {
         StepSolver::Direct => {
-            let out = direct::solve(&mut model, u, &f_ext, &cx.act.dormant, cx.bufs, &label)?;
+            let out = direct::solve(
+                &mut model,
+                u,
+                &f_ext,
+                &cx.act.dormant,
+                cx.bufs,
+                &cx.plan.linear,
+                &label,
+            )?;
             if out.after.ratio > convergence.tolerance {
                 let x = model.mesh.coords[out.after.node];
                 return Err(DcfmError::Static {
@@ -149,8 +161,17 @@ fn solve_step(
             report.out_of_balance = out.after;
             report.equations = out.equations;
             report.stiffness_nonzeros = out.k_nnz;
-            report.factor_nonzeros = out.l_nnz;
-            report.supernodal = out.supernodal;
+            match out.linear {
+                LinearSolverUsed::Cholesky { l_nnz, supernodal } => {
+                    report.factor_nonzeros = l_nnz;
+                    report.supernodal = supernodal;
+                    report.linear_solver = Some(LinearSolverChoice::Cholesky);
+                }
+                LinearSolverUsed::ConjugateGradients { iterations, .. } => {
+                    report.iterations = iterations;
+                    report.linear_solver = Some(LinearSolverChoice::ConjugateGradients);
+                }
+            }
             report.seconds = out.seconds;
         }
         StepSolver::Relaxation => {
@@ -166,6 +187,7 @@ fn solve_step(
                     &f_ext,
                     &cx.act.dormant,
                     cx.bufs,
+                    &cx.plan.linear,
                     &label,
                 ) {
                     Ok(_) => u.copy_from_slice(&trial),

@@ -2,6 +2,7 @@
 //! method and the sequence of excavation / activation steps (built from the case's
 //! `[static]` section by `case/build/static_stage.rs`, or by hand in programs and tests).
 
+use super::linear_solver::LinearSettings;
 use crate::boundary::Constraints;
 
 /// How a step is solved.
@@ -198,6 +199,8 @@ pub struct StaticPlan {
     /// Elements placed by a step before they were ever active (they start inactive).
     pub initially_inactive: Vec<u32>,
     pub relaxation: RelaxationSettings,
+    /// The linear solver of the direct steps and of the relaxation's predictor.
+    pub linear: LinearSettings,
     /// Damaged-volume measure of eq. (27): threshold and per-element flag (as `[output]`).
     pub damage_threshold: f64,
     pub damage_per_element: bool,
@@ -214,6 +217,7 @@ impl StaticPlan {
             steps: Vec::new(),
             initially_inactive: Vec::new(),
             relaxation: RelaxationSettings::default(),
+            linear: LinearSettings::default(),
             damage_threshold: 0.1,
             damage_per_element: false,
         }

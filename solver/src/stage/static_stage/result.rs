@@ -12,6 +12,7 @@ use serde::Serialize;
 
 use super::forces::OutOfBalance;
 use super::history::HistoryRow;
+use super::linear_solver::LinearSolverChoice;
 use super::plan::StepSolver;
 use crate::error::Result;
 use crate::load::{NodalLoad, TimeFunction};
@@ -23,7 +24,8 @@ use crate::stage::Simulation;
 pub struct StepReport {
     pub name: String,
     pub solver: StepSolver,
-    /// Relaxation iterations (1 for a direct solve).
+    /// Relaxation iterations; for a direct step 1 with the Cholesky factor, the conjugate
+    /// gradients' iterations with them.
     pub iterations: usize,
     /// Out-of-balance when the step starts (release forces, loads of placed elements) and
     /// at its end.
@@ -39,6 +41,8 @@ pub struct StepReport {
     pub stiffness_nonzeros: usize,
     pub factor_nonzeros: usize,
     pub supernodal: bool,
+    /// The linear solver of a direct step (`None` for a relaxation step).
+    pub linear_solver: Option<LinearSolverChoice>,
     pub seconds: [f64; 3],
 }
 

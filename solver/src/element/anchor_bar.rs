@@ -190,6 +190,9 @@ impl NodeScatter {
     }
 }
 
+/// Segments per parallel task of [`AnchorBars::history_values`].
+const HISTORY_SEGMENTS_PER_TASK: usize = 8192;
+
 /// Segments per rayon task of the segment phase, host nodes per task of the node phase:
 /// large enough to amortise the task, small enough to balance two to a few threads.
 const SEGMENTS_PER_TASK: usize = 1024;
@@ -769,18 +772,44 @@ impl AnchorBars {
     /// Append the history values to `row`, in the order of
     /// [`AnchorBars::history_names`].
     pub fn history_values(&self, layout: &AnchorHistoryLayout, row: &mut Vec<f64>) {
-        // One pass over the segments, each adding to its group's pair (max, yielded) in
-        // place in the row (a pass per group cost groups × segments per history row).
+        // Fixed chunks of segments in parallel, each with its groups' pairs (max, yielded);
+        // maxima and counts do not depend on the order they are combined in (a zero
+        // maximum is written as +0).
+        let groups = layout.groups;
+        let n_chunks = layout
+            .segment_group
+            .len()
+            .div_ceil(HISTORY_SEGMENTS_PER_TASK);
+        let partial: Vec<Vec<f64>> = (0..n_chunks)
+            .into_par_iter()
+            .map(|c| {
+                let mut pairs = vec![0.0f64; 2 * groups];
+                let start = c * HISTORY_SEGMENTS_PER_TASK;
+                let end = (start + HISTORY_SEGMENTS_PER_TASK).min(layout.segment_group.len());
+                for k in start..end {
+                    let g = layout.segment_group[k] as usize;
+                    pairs[2 * g] = pairs[2 * g].max(self.force[k]);
+                    if self.plastic[k] != 0.0
+                        && self.force[k].abs() >= layout.segment_yield[k] * (1.0 - 1e-12)
+                    {
+                        pairs[2 * g + 1] += 1.0;
+                    }
+                }
+                pairs
+            })
+            .collect();
         let base = row.len();
-        row.resize(base + 2 * layout.groups, 0.0);
+        row.resize(base + 2 * groups, 0.0);
         let pairs = &mut row[base..];
-        for (k, &g) in layout.segment_group.iter().enumerate() {
-            let pair = &mut pairs[2 * g as usize..2 * g as usize + 2];
-            pair[0] = pair[0].max(self.force[k]);
-            if self.plastic[k] != 0.0
-                && self.force[k].abs() >= layout.segment_yield[k] * (1.0 - 1e-12)
-            {
-                pair[1] += 1.0;
+        for p in &partial {
+            for g in 0..groups {
+                pairs[2 * g] = pairs[2 * g].max(p[2 * g]);
+                pairs[2 * g + 1] += p[2 * g + 1];
+            }
+        }
+        for g in 0..groups {
+            if pairs[2 * g] == 0.0 {
+                pairs[2 * g] = 0.0;
             }
         }
     }

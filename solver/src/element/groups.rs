@@ -15,6 +15,9 @@ use crate::error::{DcfmError, Result};
 use crate::material::{Material, PointContext, PointStates, Voigt};
 use crate::mesh::Mesh;
 
+/// Elements per parallel task (and per partial sum) of [`ElementGroup::damaged_volume`].
+const DAMAGE_CHUNK: usize = 1024;
+
 /// Elements per parallel task of the two-phase force pass (one runtime dispatch each).
 const FORCE_CHUNK: usize = 16;
 
@@ -585,15 +588,17 @@ impl ElementGroup {
     /// at least `threshold`; with `per_element` true, the summed volume of the elements
     /// whose volume-averaged D_t (resp. D_c, either) is at least `threshold`
     /// (docs/plastic_damage.md §5).
+    ///
+    /// Elements in parallel, in fixed chunks whose partial sums are added in chunk order:
+    /// the same bits on any number of threads.
     pub fn damaged_volume(&self, threshold: f64, per_element: bool) -> [f64; 3] {
-        let mut v = [0.0; 3];
         if !self.material.has_damage() {
-            return v;
+            return [0.0; 3];
         }
         let stride = self.states.stride();
         let np = self.integration.points();
         let state = self.states.current();
-        let mut add = |dt: f64, dc: f64, vol: f64| {
+        let add = |v: &mut [f64; 3], dt: f64, dc: f64, vol: f64| {
             let (t, c) = (dt >= threshold, dc >= threshold);
             if t {
                 v[0] += vol;
@@ -605,28 +610,38 @@ impl ElementGroup {
                 v[2] += vol;
             }
         };
-        for le in 0..self.len() {
-            let (mut et, mut ec) = (0.0, 0.0);
-            for gp in 0..np {
-                let p = le * np + gp;
-                if let Some((dt, dc)) = self
-                    .material
-                    .tensile_and_compressive_damage(&state[p * stride..(p + 1) * stride])
-                {
-                    let pv = self.point_volume(le, gp);
+        let n_chunks = self.len().div_ceil(DAMAGE_CHUNK);
+        let partial: Vec<[f64; 3]> = (0..n_chunks)
+            .into_par_iter()
+            .map(|c| {
+                let mut v = [0.0; 3];
+                for le in c * DAMAGE_CHUNK..((c + 1) * DAMAGE_CHUNK).min(self.len()) {
+                    let (mut et, mut ec) = (0.0, 0.0);
+                    for gp in 0..np {
+                        let p = le * np + gp;
+                        if let Some((dt, dc)) = self
+                            .material
+                            .tensile_and_compressive_damage(&state[p * stride..(p + 1) * stride])
+                        {
+                            let pv = self.point_volume(le, gp);
+                            if per_element {
+                                et += dt * pv / self.volume[le];
+                                ec += dc * pv / self.volume[le];
+                            } else {
+                                add(&mut v, dt, dc, pv);
+                            }
+                        }
+                    }
                     if per_element {
-                        et += dt * pv / self.volume[le];
-                        ec += dc * pv / self.volume[le];
-                    } else {
-                        add(dt, dc, pv);
+                        add(&mut v, et, ec, self.volume[le]);
                     }
                 }
-            }
-            if per_element {
-                add(et, ec, self.volume[le]);
-            }
-        }
-        v
+                v
+            })
+            .collect();
+        partial
+            .iter()
+            .fold([0.0; 3], |a, p| std::array::from_fn(|k| a[k] + p[k]))
     }
 
     /// Elastic strain energy ½ ∫ ε : E0 : ε dV (+ hourglass energy ½ κ q²) of the group for

@@ -1,5 +1,5 @@
 #!/bin/bash
-# The script of the 2026-11-27 16-core check (docs/benchmarks.md). Run from a folder
+# The script of the 2026-11-27 16-core check (docs/benchmarks.md). Copy it into a folder
 # holding: dcfm and throughput (release, stripped), checkpoint.bin (a `dcfm run` of the
 # Yingxiuwan CI case stopped at 3.0 s), stretch.toml (that case with end = 3.3),
 # static_cg.toml (the generated CI case with [static] linear_solver =

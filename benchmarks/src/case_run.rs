@@ -129,7 +129,7 @@ pub fn run_case_timed(
         let wall_s = summary.wall_s.max(1e-9);
         let record = ThroughputRecord {
             case: config.row_name(),
-            elements: summary.elements,
+            elements: summary.active_elements,
             nodes: summary.nodes,
             integration: "case".to_string(),
             threads,

@@ -39,3 +39,29 @@ fn excavated_cells_and_dormant_nodes_are_flagged() {
         assert_eq!(p, expected, "node {n} at {:?}", model.mesh.coords[n]);
     }
 }
+
+/// The run's summary counts the elements the dynamic stage computes: the excavated
+/// gallery element is in `elements`, not in `active_elements`, and the element-update
+/// rate is steps × active elements per second.
+#[test]
+fn summary_counts_the_active_elements() {
+    let out = std::env::temp_dir().join(format!("dcfm-activity-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&out);
+    let opts = dcfm_app::run::RunOptions {
+        out: out.clone(),
+        progress: false,
+        ..Default::default()
+    };
+    let case = parse_case(CASE, "case.toml", Path::new(".")).unwrap();
+    let s = dcfm_app::run::run_case(case, &opts).unwrap();
+    assert_eq!(
+        s.active_elements + 1,
+        s.elements,
+        "{} of {}",
+        s.active_elements,
+        s.elements
+    );
+    let rate = s.steps_per_s * s.active_elements as f64;
+    assert!((s.element_updates_per_s - rate).abs() <= 1e-9 * rate);
+    let _ = std::fs::remove_dir_all(&out);
+}

@@ -105,8 +105,6 @@ pub struct Wall {
     v_prev: Vec<[f64; 3]>,
     /// Stress at each Gauss point at tⁿ.
     stress: Vec<[Voigt; 4]>,
-    f_int: Vec<[f64; 3]>,
-    f_damp: Vec<[f64; 3]>,
     source: Vec<[f64; 3]>,
     /// Per-element internal and (β-scaled) damping forces of the step, computed in
     /// parallel and then added to the nodes in element order (thread-count independent).
@@ -243,8 +241,6 @@ impl Wall {
             u_prev: vec![[0.0; 3]; n],
             v_prev: vec![[0.0; 3]; n],
             stress: vec![[[0.0; 6]; 4]; ne],
-            f_int: vec![[0.0; 3]; n],
-            f_damp: vec![[0.0; 3]; n],
             source: vec![[0.0; 3]; n],
             element_force: vec![[[0.0; 3]; 4]; ne],
             element_damping: vec![[[0.0; 3]; 4]; ne],
@@ -365,31 +361,6 @@ impl Wall {
                     *fd = f.map(|fk| fk.map(|x| beta * x));
                 }
             });
-        // … added to the nodes in element order, each node on its own: the same sums on
-        // any thread count.
-        let (ef, ed, damping) = (&self.element_force, &self.element_damping, &self.damping);
-        let corners = &self.node_corners;
-        self.f_int
-            .par_chunks_mut(NODES_PER_TASK)
-            .zip(self.f_damp.par_chunks_mut(NODES_PER_TASK))
-            .enumerate()
-            .for_each(|(c, (fi, fd))| {
-                for (k, (fi, fd)) in fi.iter_mut().zip(fd).enumerate() {
-                    *fi = [0.0; 3];
-                    *fd = [0.0; 3];
-                    for &ek in corners.of(c * NODES_PER_TASK + k) {
-                        let (e, k) = (ek as usize / 4, ek as usize % 4);
-                        for d in 0..3 {
-                            fi[d] += ef[e][k][d];
-                        }
-                        if damping[e].1 > 0.0 {
-                            for d in 0..3 {
-                                fd[d] += ed[e][k][d];
-                            }
-                        }
-                    }
-                }
-            });
         // Column-driven forces on the linked nodes.
         for l in &self.links {
             let col = &columns[l.column as usize];
@@ -419,8 +390,12 @@ impl Wall {
         }
         self.u_prev.copy_from_slice(&self.u);
         self.v_prev.copy_from_slice(&self.v);
-        let (mass, link_slot, alpha) = (&self.mass, &self.link_slot, &self.alpha);
-        let (source, f_int, f_damp) = (&self.source, &self.f_int, &self.f_damp);
+        // Each node on its own, in parallel: its element forces added in element order (the
+        // same sums on any thread count), then its update.
+        let (ef, ed, damping) = (&self.element_force, &self.element_damping, &self.damping);
+        let corners = &self.node_corners;
+        let (mass, link_slot, alpha, source) =
+            (&self.mass, &self.link_slot, &self.alpha, &self.source);
         let (u_prev, v_prev) = (&self.u_prev, &self.v_prev);
         let (link_spring, updates) = (&self.link_spring, &self.updates);
         self.u
@@ -430,10 +405,22 @@ impl Wall {
             .for_each(|(c, (us, vs))| {
                 for (k, (u, v)) in us.iter_mut().zip(vs).enumerate() {
                     let i = c * NODES_PER_TASK + k;
+                    let (mut fi, mut fd) = ([0.0; 3], [0.0; 3]);
+                    for &ek in corners.of(i) {
+                        let (e, a) = (ek as usize / 4, ek as usize % 4);
+                        for d in 0..3 {
+                            fi[d] += ef[e][a][d];
+                        }
+                        if damping[e].1 > 0.0 {
+                            for d in 0..3 {
+                                fd[d] += ed[e][a][d];
+                            }
+                        }
+                    }
                     let m = mass[i];
                     let slot = link_slot[i];
                     let mut force: [f64; 3] = std::array::from_fn(|d| {
-                        source[i][d] - f_int[i][d] - f_damp[i][d] - alpha[i] * m * v_prev[i][d]
+                        source[i][d] - fi[d] - fd[d] - alpha[i] * m * v_prev[i][d]
                     });
                     let vn = if slot == u32::MAX {
                         std::array::from_fn(|d| v_prev[i][d] + dt * force[d] / m)

@@ -59,8 +59,6 @@ pub enum LinearSolverUsed {
     ConjugateGradients {
         iterations: usize,
         relative_residual: f64,
-        /// Nonzeros of L of the factor `auto` declined (0 when not analysed).
-        declined_l_nnz: usize,
     },
 }
 
@@ -86,17 +84,13 @@ pub fn solve_in_place(
             Some(Analysis::new(k, CholeskyKind::Auto).map_err(LinearSolveError::Factor)?)
         }
     };
-    let declined_l_nnz = match &analysis {
-        Some(a)
-            if settings.choice == LinearSolverChoice::Auto
-                && a.l_nnz() as f64 * 8.0 > settings.factor_memory_limit =>
-        {
-            a.l_nnz()
-        }
-        _ => 0,
-    };
+    // `auto` declines a factor over the limit (its analysis is dropped before iterating).
+    let analysis = analysis.filter(|a| {
+        settings.choice != LinearSolverChoice::Auto
+            || a.l_nnz() as f64 * 8.0 <= settings.factor_memory_limit
+    });
     match analysis {
-        Some(a) if declined_l_nnz == 0 => {
+        Some(a) => {
             let fact = a.factorize(k).map_err(LinearSolveError::Factor)?;
             let t1 = std::time::Instant::now();
             fact.solve_in_place(b);
@@ -106,13 +100,12 @@ pub fn solve_in_place(
             };
             Ok((used, [(t1 - t0).as_secs_f64(), t1.elapsed().as_secs_f64()]))
         }
-        _ => {
+        None => {
             let out = conjugate_gradients::solve_in_place(k, b, settings.cg)
                 .map_err(LinearSolveError::Iterative)?;
             let used = LinearSolverUsed::ConjugateGradients {
                 iterations: out.iterations,
                 relative_residual: out.relative_residual,
-                declined_l_nnz,
             };
             Ok((used, [t0.elapsed().as_secs_f64(), 0.0]))
         }

@@ -47,6 +47,11 @@ struct Cli {
     /// Minimum timed wall time per configuration, seconds (default 2; 0.1 with --quick).
     #[arg(long)]
     min_wall: Option<f64>,
+    /// Time exactly this many steps per configuration instead of stepping until
+    /// --min-wall has passed (A/B comparisons of two builds: in the damaging regime the
+    /// cost of a step grows with the damage, so rates compare only over the same steps).
+    #[arg(long, conflicts_with = "min_wall", value_parser = clap::value_parser!(u64).range(1..))]
+    steps: Option<u64>,
     /// History file to append to (default <workspace>/benchmarks/history.jsonl).
     #[arg(long)]
     history: Option<PathBuf>,
@@ -97,6 +102,12 @@ fn main() -> ExitCode {
     }
     if let Some(w) = cli.min_wall {
         config.min_wall_s = w;
+    }
+    if let Some(n) = cli.steps {
+        config.min_wall_s = 0.0;
+        config.min_steps = n;
+        config.max_steps = n;
+        config.mode = format!("{}_steps{n}", config.mode);
     }
     if let Some(h) = cli.history {
         config.history = Some(h);

@@ -273,19 +273,20 @@ impl PlasticDamage {
         let trial = self.elastic.stress(&sub(eps, &st.plastic));
         // Cheap check on the invariants first; the eigenvalues only near the surface.
         let (i1, q) = invariants(&trial);
-        let (ct, cc) = (
-            pb.tension.effective(st.y_t),
-            pb.compression.effective(st.y_c),
-        );
+        let start = pb.start(st.y_t, st.y_c);
+        let (ct, cc) = (start.ct, start.cc);
         if self.surface.surely_inside(i1, q, ct, cc)
             || (definiteness(&trial) == Definiteness::NonPositive
                 && self.surface.surely_inside_compressed(i1, q, ct, cc))
-            || pb.yield_value(&principal_values(&trial), st.y_t, st.y_c) <= 0.0
         {
             return (*st, true);
         }
-        let sp = Spectral::of(&trial);
-        let ret = pb.solve(&sp.values, st.y_t, st.y_c);
+        let values = principal_values(&trial);
+        if self.surface.value(&values, ct, cc) <= 0.0 {
+            return (*st, true);
+        }
+        let sp = Spectral::with_values(&trial, values);
+        let ret = pb.solve(&sp.values, &start);
         let dp = [
             ret.dlam * ret.m[0],
             ret.dlam * ret.m[1],
@@ -400,7 +401,7 @@ impl PlasticDamage {
 
         let (t, c) = (&pb.tension, &pb.compression);
         let eff = self.elastic.stress(&sub(strain, &st.plastic));
-        let (sig, d) = self.nominal(&eff, st.y_t, st.y_c);
+        let (sig, d, d_t) = self.nominal(&eff, st.y_t, st.y_c);
         new[slot::PLASTIC..slot::PLASTIC + 6].copy_from_slice(&st.plastic);
         new[slot::STRAIN..slot::STRAIN + 6].copy_from_slice(strain);
         new[slot::Y_T] = st.y_t;
@@ -418,7 +419,9 @@ impl PlasticDamage {
         // recoverable energy ψ = ½ σ:(ε − εᵖ). Zero (and skipped) when neither the internal
         // variables nor D can have changed.
         let unchanged = st.plastic == start.plastic && st.y_t == start.y_t && st.y_c == start.y_c;
-        new[slot::DISSIPATED] = if unchanged && t.damage(start.y_t) == 0.0 {
+        // (unchanged: y_t is start.y_t, so d_t is D_t(start.y_t); tension and
+        // compression laws share r with the element's, scaled in f₀ only)
+        new[slot::DISSIPATED] = if unchanged && d_t == 0.0 {
             old[slot::DISSIPATED]
         } else {
             // σₙ as the last update returned it: stress_from_state(ε₀, old) bit for bit.
@@ -471,9 +474,9 @@ impl PlasticDamage {
     /// Nominal stress σ and the D of eq. (24) for effective stress `eff` and hardening
     /// y_t, y_c, by the material's [`Recovery`] rule (`recovery.rs`): σ = (1 − D) σ̄ (eq. 23)
     /// for `LeeFenves`; from the Gibbs energy for `Consistent` (equal in uniaxial states),
-    /// whose D is reported as a diagnostic only.
+    /// whose D is reported as a diagnostic only. Third: the tensile degradation D_t(y_t).
     #[inline]
-    fn nominal(&self, eff: &Voigt, y_t: f64, y_c: f64) -> (Voigt, f64) {
+    fn nominal(&self, eff: &Voigt, y_t: f64, y_c: f64) -> (Voigt, f64, f64) {
         let dt = self.constants.tension.damage(y_t);
         let dc = self.constants.compression.damage(y_c);
         let s0 = self.constants.s0;
@@ -484,7 +487,7 @@ impl PlasticDamage {
                 recovery::consistent_stress(eff, dt, dc, s0, self.elastic.poisson)
             }
         };
-        (sig, d)
+        (sig, d, dt)
     }
 
     /// Nominal stress at total strain `strain` for an updated state (eqs. 23–24, by the

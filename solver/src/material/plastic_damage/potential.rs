@@ -34,14 +34,28 @@ impl Potential {
     }
 
     /// Principal effective stress after a return of size Δλ from the trial `trial`
-    /// (bulk modulus `k`, shear modulus `mu`), with the flow direction there.
+    /// (bulk modulus `k`, shear modulus `mu`), with the flow direction there (the return
+    /// splits the trial once and calls [`Self::returned_from`]).
+    #[cfg(test)]
     pub fn returned(&self, trial: &[f64; 3], dlam: f64, k: f64, mu: f64) -> ([f64; 3], [f64; 3]) {
-        let mean_tr = (trial[0] + trial[1] + trial[2]) / 3.0;
-        let dev = [trial[0] - mean_tr, trial[1] - mean_tr, trial[2] - mean_tr];
-        let q_tr = super::yield_surface::von_mises(trial);
+        let (s, m, _) = self.returned_from(&TrialSplit::of(trial), dlam, k, mu);
+        (s, m)
+    }
+
+    /// [`Self::returned`] from the trial's mean and deviator, split once per return; third,
+    /// the returned √(3J̄₂) = q.
+    #[inline]
+    pub fn returned_from(
+        &self,
+        trial: &TrialSplit,
+        dlam: f64,
+        k: f64,
+        mu: f64,
+    ) -> ([f64; 3], [f64; 3], f64) {
+        let (dev, q_tr) = (&trial.dev, trial.q);
         let q = self.shrink(q_tr, 3.0 * mu * dlam);
         let scale = if q_tr > 0.0 { q / q_tr } else { 0.0 };
-        let mean = mean_tr - k * dlam * self.tan_psi;
+        let mean = trial.mean - k * dlam * self.tan_psi;
         let s = [
             mean + scale * dev[0],
             mean + scale * dev[1],
@@ -49,18 +63,17 @@ impl Potential {
         ];
         let r = (self.hyper * self.hyper + q * q).sqrt();
         let t = self.tan_psi / 3.0;
-        let m = [
-            1.5 * scale * dev[0] / r + t,
-            1.5 * scale * dev[1] / r + t,
-            1.5 * scale * dev[2] / r + t,
-        ];
-        (s, m)
+        let k_dev = 1.5 * scale / r;
+        let m = [k_dev * dev[0] + t, k_dev * dev[1] + t, k_dev * dev[2] + t];
+        (s, m, q)
     }
 
     /// Root q ∈ [0, qᵗʳ] of φ(q) = q + c q/√(h² + q²) − qᵗʳ, c = 3μΔλ ≥ 0.
     ///
     /// φ is increasing and concave, so Newton started left of the root (at the h = 0
-    /// solution max(qᵗʳ − c, 0), where φ ≤ 0) climbs monotonically to it.
+    /// solution max(qᵗʳ − c, 0), where φ ≤ 0) climbs monotonically to it. With
+    /// R = √(h² + q²) the step φ/φ' = R² (R (q − qᵗʳ) + c q)/(R³ + c h²) takes one
+    /// division (the return's latency chain is divisions and square roots).
     fn shrink(&self, q_tr: f64, c: f64) -> f64 {
         if q_tr <= 0.0 {
             return 0.0;
@@ -71,16 +84,40 @@ impl Potential {
         let h2 = self.hyper * self.hyper;
         let mut q = (q_tr - c).max(0.0);
         for _ in 0..100 {
-            let r = (h2 + q * q).sqrt();
-            let phi = q + c * q / r - q_tr;
-            let dphi = 1.0 + c * h2 / (r * r * r);
-            let step = phi / dphi;
+            let r2 = h2 + q * q;
+            let r = r2.sqrt();
+            let step = r2 * (r * (q - q_tr) + c * q) / (r2 * r + c * h2);
             q = (q - step).clamp(0.0, q_tr);
             if step.abs() <= 1e-15 * q_tr {
                 break;
             }
         }
         q
+    }
+}
+
+/// The mean stress, the deviator and qᵗʳ = √(3J̄₂) of a principal trial stress, the
+/// constant part of every evaluation of a return.
+#[derive(Clone, Copy, Debug)]
+pub struct TrialSplit {
+    /// Ī₁/3 of the trial (Pa).
+    pub mean: f64,
+    /// Principal deviator of the trial (Pa).
+    pub dev: [f64; 3],
+    /// √(3J̄₂) of the trial (Pa).
+    pub q: f64,
+}
+
+impl TrialSplit {
+    /// Split the sorted principal trial stress `trial`.
+    #[inline]
+    pub fn of(trial: &[f64; 3]) -> Self {
+        let mean = (trial[0] + trial[1] + trial[2]) / 3.0;
+        Self {
+            mean,
+            dev: [trial[0] - mean, trial[1] - mean, trial[2] - mean],
+            q: super::yield_surface::von_mises(trial),
+        }
     }
 }
 

@@ -98,8 +98,14 @@ impl Spectral {
     /// `SymmetricEigen`, which the tests compare it with.
     #[inline]
     pub fn of(s: &Voigt) -> Self {
+        Self::with_values(s, principal_values(s))
+    }
+
+    /// [`Self::of`] for a caller that already has `values` = [`principal_values`]`(s)`.
+    #[inline]
+    pub fn with_values(s: &Voigt, values: [f64; 3]) -> Self {
         let a = to_matrix(s);
-        let [l1, l2, l3] = principal_values(s);
+        let [l1, l2, l3] = values;
         let (first, second, third) = if l1 - l2 >= l2 - l3 {
             let n1 = isolated_vector(&a, l1);
             let (n2, n3) = plane_vectors(&a, &n1);

@@ -13,7 +13,7 @@
 //! (regula falsi) iteration: bounded, derivative free, and always left on the admissible side F ≤ 0.
 
 use super::hardening::SofteningLaw;
-use super::potential::Potential;
+use super::potential::{Potential, TrialSplit};
 use super::yield_surface::{tension_weight, YieldSurface};
 
 /// Cap on the bracket expansions of the local solve.
@@ -50,6 +50,19 @@ pub struct LocalProblem<'a> {
     pub max_iter: usize,
 }
 
+/// Hardening state at the start of a return and its effective cohesions.
+#[derive(Clone, Copy, Debug)]
+pub struct Start {
+    /// y_t at the start of the step.
+    pub y_t: f64,
+    /// y_c at the start of the step.
+    pub y_c: f64,
+    /// c̄_t(y_t) (Pa).
+    pub ct: f64,
+    /// c̄_c(y_c) (Pa).
+    pub cc: f64,
+}
+
 /// Result of a return.
 #[derive(Clone, Copy, Debug)]
 pub struct Returned {
@@ -68,49 +81,66 @@ pub struct Returned {
 }
 
 impl LocalProblem<'_> {
-    /// F of eq. (25) at the start-of-step hardening for principal stresses `s`.
+    /// The start-of-step hardening (y_t0, y_c0) with its effective cohesions c̄_t, c̄_c
+    /// (eq. 25's strengths), each evaluated once per return.
     #[inline]
-    pub fn yield_value(&self, s: &[f64; 3], y_t: f64, y_c: f64) -> f64 {
-        self.surface.value(
-            s,
-            self.tension.effective(y_t),
-            self.compression.effective(y_c),
-        )
+    pub fn start(&self, y_t0: f64, y_c0: f64) -> Start {
+        Start {
+            y_t: y_t0,
+            y_c: y_c0,
+            ct: self.tension.effective(y_t0),
+            cc: self.compression.effective(y_c0),
+        }
     }
 
-    /// State after a return of size Δλ from the trial.
+    /// State after a return of size Δλ from the trial. A hardening variable that did not
+    /// move keeps its start cohesion (the same value `effective` would give again).
     #[inline]
-    fn evaluate(&self, trial: &[f64; 3], y_t0: f64, y_c0: f64, dlam: f64) -> Returned {
-        let (s, m) = self.potential.returned(trial, dlam, self.bulk, self.mu);
+    fn evaluate(&self, trial: &TrialSplit, start: &Start, dlam: f64) -> Returned {
+        let (s, m, q) = self
+            .potential
+            .returned_from(trial, dlam, self.bulk, self.mu);
         let r = tension_weight(&s);
-        let y_t = y_t0 + self.b_t * r * dlam * m[0].max(0.0);
-        let y_c = y_c0 + self.b_c * (1.0 - r) * dlam * (-m[2]).max(0.0);
+        let y_t = start.y_t + self.b_t * r * dlam * m[0].max(0.0);
+        let y_c = start.y_c + self.b_c * (1.0 - r) * dlam * (-m[2]).max(0.0);
+        let ct = if y_t == start.y_t {
+            start.ct
+        } else {
+            self.tension.effective(y_t)
+        };
+        let cc = if y_c == start.y_c {
+            start.cc
+        } else {
+            self.compression.effective(y_c)
+        };
         Returned {
             dlam,
             m,
             y_t,
             y_c,
-            f: self.yield_value(&s, y_t, y_c),
+            // √(3J̄₂) of s is the returned q (s's deviator is the trial's scaled to it)
+            f: self.surface.value_from(s[0] + s[1] + s[2], q, s[0], ct, cc),
             converged: false,
         }
     }
 
     /// Return the sorted principal trial stress `trial` (with F(trial) > 0) to the yield
-    /// surface from the hardening state (y_t0, y_c0).
-    pub fn solve(&self, trial: &[f64; 3], y_t0: f64, y_c0: f64) -> Returned {
-        let f_tr = self.yield_value(trial, y_t0, y_c0);
+    /// surface from the hardening state `start` ([`Self::start`]).
+    pub fn solve(&self, trial: &[f64; 3], start: &Start) -> Returned {
+        let f_tr = self.surface.value(trial, start.ct, start.cc);
+        let trial = &TrialSplit::of(trial);
         if f_tr <= self.tol {
             // Inside to within the tolerance (the caller's check may use other rounding).
             return Returned {
                 converged: true,
-                ..self.evaluate(trial, y_t0, y_c0, 0.0)
+                ..self.evaluate(trial, start, 0.0)
             };
         }
         // Bracket: F(0) > 0; expand Δλ geometrically from an elastic-slope estimate until
         // F ≤ 0 (F → −∞ as Δλ → ∞ because the mean stress falls as K Δλ tan ψ).
         let (mut a, mut fa) = (0.0, f_tr);
         let mut hi = (f_tr / (3.0 * self.mu)).max(f64::MIN_POSITIVE);
-        let mut at_hi = self.evaluate(trial, y_t0, y_c0, hi);
+        let mut at_hi = self.evaluate(trial, start, hi);
         let mut expanded = 0;
         // (written so that a NaN F also enters the loop and returns)
         while at_hi.f.is_nan() || at_hi.f > 0.0 {
@@ -124,7 +154,7 @@ impl LocalProblem<'_> {
             a = hi;
             fa = at_hi.f;
             hi *= 4.0;
-            at_hi = self.evaluate(trial, y_t0, y_c0, hi);
+            at_hi = self.evaluate(trial, start, hi);
             expanded += 1;
         }
         if at_hi.f.abs() <= self.tol {
@@ -140,7 +170,7 @@ impl LocalProblem<'_> {
             if !(c > a && c < b) {
                 c = 0.5 * (a + b);
             }
-            let at_c = self.evaluate(trial, y_t0, y_c0, c);
+            let at_c = self.evaluate(trial, start, c);
             if !at_c.f.is_finite() {
                 break;
             }

@@ -113,10 +113,12 @@ impl TrialSplit {
     #[inline]
     pub fn of(trial: &[f64; 3]) -> Self {
         let mean = (trial[0] + trial[1] + trial[2]) / 3.0;
+        let dev = [trial[0] - mean, trial[1] - mean, trial[2] - mean];
         Self {
             mean,
-            dev: [trial[0] - mean, trial[1] - mean, trial[2] - mean],
-            q: super::yield_surface::von_mises(trial),
+            dev,
+            // von_mises(trial), from the deviator it forms the same way
+            q: (1.5 * (dev[0] * dev[0] + dev[1] * dev[1] + dev[2] * dev[2])).sqrt(),
         }
     }
 }

@@ -80,6 +80,16 @@ pub struct Returned {
     pub converged: bool,
 }
 
+/// c̄(y) of `law`: the start cohesion `c0` while y is still the start value `y0`.
+#[inline]
+fn cohesion(law: &SofteningLaw, y: f64, y0: f64, c0: f64) -> f64 {
+    if y == y0 {
+        c0
+    } else {
+        law.effective(y)
+    }
+}
+
 impl LocalProblem<'_> {
     /// The start-of-step hardening (y_t0, y_c0) with its effective cohesions c̄_t, c̄_c
     /// (eq. 25's strengths), each evaluated once per return.
@@ -103,16 +113,8 @@ impl LocalProblem<'_> {
         let r = tension_weight(&s);
         let y_t = start.y_t + self.b_t * r * dlam * m[0].max(0.0);
         let y_c = start.y_c + self.b_c * (1.0 - r) * dlam * (-m[2]).max(0.0);
-        let ct = if y_t == start.y_t {
-            start.ct
-        } else {
-            self.tension.effective(y_t)
-        };
-        let cc = if y_c == start.y_c {
-            start.cc
-        } else {
-            self.compression.effective(y_c)
-        };
+        let ct = cohesion(&self.tension, y_t, start.y_t, start.ct);
+        let cc = cohesion(&self.compression, y_c, start.y_c, start.cc);
         Returned {
             dlam,
             m,
@@ -127,8 +129,16 @@ impl LocalProblem<'_> {
     /// Return the sorted principal trial stress `trial` (with F(trial) > 0) to the yield
     /// surface from the hardening state `start` ([`Self::start`]).
     pub fn solve(&self, trial: &[f64; 3], start: &Start) -> Returned {
-        let f_tr = self.surface.value(trial, start.ct, start.cc);
-        let trial = &TrialSplit::of(trial);
+        let split = TrialSplit::of(trial);
+        // F(trial) = `surface.value(trial, ..)`, with the split's √(3J̄₂)
+        let f_tr = self.surface.value_from(
+            trial[0] + trial[1] + trial[2],
+            split.q,
+            trial[0],
+            start.ct,
+            start.cc,
+        );
+        let trial = &split;
         if f_tr <= self.tol {
             // Inside to within the tolerance (the caller's check may use other rounding).
             return Returned {

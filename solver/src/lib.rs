@@ -27,5 +27,7 @@ pub mod model;
 pub mod motion;
 pub mod readable;
 pub mod stage;
+#[cfg(test)]
+mod test_random;
 
 pub use error::{DcfmError, Result};

@@ -202,20 +202,7 @@ mod tests {
     use crate::material::{Elastic, PlasticDamage};
     use crate::mesh::hex8_shape::NODE_XI;
 
-    /// A small deterministic generator (64-bit LCG, top 53 bits) for random elements.
-    struct Lcg(u64);
-    impl Lcg {
-        fn next(&mut self) -> f64 {
-            self.0 = self
-                .0
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (self.0 >> 11) as f64 / (1u64 << 53) as f64
-        }
-        fn sym(&mut self) -> f64 {
-            2.0 * self.next() - 1.0
-        }
-    }
+    use crate::test_random::Lcg;
 
     /// A randomly stretched, sheared and distorted hex8 (corners moved by up to 15 % of
     /// the edge) and random displacements of magnitude `mag`.

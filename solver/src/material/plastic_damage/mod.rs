@@ -480,11 +480,12 @@ impl PlasticDamage {
         let dt = self.constants.tension.damage(y_t);
         let dc = self.constants.compression.damage(y_c);
         let s0 = self.constants.s0;
-        let d = recovery::lee_fenves_damage(eff, dt, dc, s0);
+        let mut classified = recovery::Classified::new(eff);
+        let d = recovery::lee_fenves_damage(&mut classified, dt, dc, s0);
         let sig = match self.constants.recovery {
             Recovery::LeeFenves => scale(eff, 1.0 - d),
             Recovery::Consistent => {
-                recovery::consistent_stress(eff, dt, dc, s0, self.elastic.poisson)
+                recovery::consistent_stress_of(&mut classified, dt, dc, s0, self.elastic.poisson)
             }
         };
         (sig, d, dt)

@@ -96,7 +96,7 @@ impl Spectral {
     /// iterative solver's (the closed form alone loses digits near a double root, see
     /// [`principal_values`]). Non-iterative and several times faster than nalgebra's
     /// `SymmetricEigen`, which the tests compare it with.
-    #[inline]
+    #[cfg(test)]
     pub fn of(s: &Voigt) -> Self {
         Self::with_values(s, principal_values(s))
     }
@@ -155,6 +155,22 @@ impl Spectral {
         }
         t
     }
+}
+
+/// The projector n⊗n (stress-like Voigt, tensor shear) onto the unit eigenvector n of `s`
+/// for its principal value `l`, `l` a simple root at least as far from the others as they
+/// are from each other ([`isolated_vector`]).
+#[inline]
+pub fn eigenprojector(s: &Voigt, l: f64) -> Voigt {
+    let n = isolated_vector(&to_matrix(s), l);
+    [
+        n[0] * n[0],
+        n[1] * n[1],
+        n[2] * n[2],
+        n[0] * n[1],
+        n[1] * n[2],
+        n[2] * n[0],
+    ]
 }
 
 /// Unit eigenvector of the symmetric `a` for its value `l`, `l` a simple root at least as
@@ -249,13 +265,8 @@ mod tests {
     /// component.
     #[test]
     fn decomposition_matches_the_iterative_solver() {
-        let mut seed = 0x5eed_1234_abcd_0001u64;
-        let mut rand = move || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-        };
+        let mut lcg = crate::test_random::Lcg(0x5eed_1234_abcd_0001);
+        let mut rand = move || lcg.next() - 0.5;
         let mut cases: Vec<Voigt> = Vec::new();
         for k in 0..2000 {
             // A rotation R from a random unit quaternion, and values with multiplicities.

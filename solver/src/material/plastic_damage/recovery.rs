@@ -28,7 +28,7 @@
 //! the order of the e_i (the gradient of a symmetric convex function is order preserving),
 //! so P is one of ∅, {1}, {1,2}, {1,2,3}: the one whose σ_i have the signs it assumes.
 
-use super::principal::{definiteness, principal_values, Definiteness, Spectral};
+use super::principal::{definiteness, eigenprojector, principal_values, Definiteness, Spectral};
 use super::yield_surface::{invariants, tension_weight};
 use crate::material::Voigt;
 
@@ -44,29 +44,71 @@ pub enum Recovery {
     LeeFenves,
 }
 
+/// An effective stress σ̄ with its invariants Ī₁, √(3J̄₂) and, once asked for, its
+/// principal values: what the weight r(σ̄) of eq. (24) and the consistent rule both classify
+/// σ̄ by, each formed once per nominal stress (the same values as forming them in each).
+pub struct Classified<'a> {
+    eff: &'a Voigt,
+    i1: f64,
+    q: f64,
+    values: Option<[f64; 3]>,
+}
+
+impl<'a> Classified<'a> {
+    /// Ī₁ and √(3J̄₂) of `eff` now; its principal values when first needed.
+    #[inline]
+    pub fn new(eff: &'a Voigt) -> Self {
+        let (i1, q) = invariants(eff);
+        Self {
+            eff,
+            i1,
+            q,
+            values: None,
+        }
+    }
+
+    /// Every principal value ≤ 0 by the bound Ī₁/3 + (2/3)√(3J̄₂) ≤ 0.
+    #[inline]
+    fn surely_compressed(&self) -> bool {
+        self.i1 / 3.0 + 2.0 * self.q / 3.0 <= 0.0
+    }
+
+    /// Every principal value ≥ 0 by the bound Ī₁/3 − (2/3)√(3J̄₂) ≥ 0.
+    #[inline]
+    fn surely_tensile(&self) -> bool {
+        self.i1 / 3.0 - 2.0 * self.q / 3.0 >= 0.0
+    }
+
+    /// [`principal_values`] of σ̄, formed at the first call.
+    #[inline]
+    fn values(&mut self) -> [f64; 3] {
+        let eff = self.eff;
+        *self.values.get_or_insert_with(|| principal_values(eff))
+    }
+}
+
 /// Where the effective stress lies: pure compression (every principal value ≤ 0),
 /// pure tension (every one ≥ 0), or mixed, decided from the invariant bounds
 /// Ī₁/3 ∓ (2/3)√(3J̄₂) first, then from the signs of I₁, I₂, I₃ ([`definiteness`], which
 /// also settles the uniaxial and biaxial states the bounds leave open), and from the
 /// principal values only for a mixed state.
-fn weight(eff: &Voigt) -> f64 {
-    let (i1, q) = invariants(eff);
-    if i1 / 3.0 - 2.0 * q / 3.0 >= 0.0 {
+fn weight(c: &mut Classified) -> f64 {
+    if c.surely_tensile() {
         return 1.0;
     }
-    if i1 / 3.0 + 2.0 * q / 3.0 <= 0.0 {
+    if c.surely_compressed() {
         return 0.0;
     }
-    match definiteness(eff) {
+    match definiteness(c.eff) {
         Definiteness::NonPositive => 0.0,
         Definiteness::NonNegative => 1.0,
-        Definiteness::Indefinite => tension_weight(&principal_values(eff)),
+        Definiteness::Indefinite => tension_weight(&c.values()),
     }
 }
 
 /// D of eq. (24), D = 1 − (1 − D_c)(1 − s D_t), s = s₀ + (1 − s₀) r(σ̄).
 #[inline]
-pub fn lee_fenves_damage(eff: &Voigt, dt: f64, dc: f64, s0: f64) -> f64 {
+pub fn lee_fenves_damage(eff: &mut Classified, dt: f64, dc: f64, s0: f64) -> f64 {
     if dt == 0.0 {
         return dc;
     }
@@ -100,8 +142,17 @@ fn principal_stresses(p: &[f64; 3], m: usize, dc: f64, a: f64, phi: f64, nu: f64
 
 /// Nominal stress of the consistent rule (module doc) for effective stress `eff`,
 /// damage `dt`, `dc`, recovery floor `s0` and Poisson's ratio `nu`. Allocation free;
-/// eigenvectors only for mixed tension–compression states of a point with D_t > 0.
+/// principal values only for a state the invariant bound does not show compressed, one
+/// eigenvector only for a mixed tension–compression state of a point with D_t > 0.
+#[cfg(test)]
 pub fn consistent_stress(eff: &Voigt, dt: f64, dc: f64, s0: f64, nu: f64) -> Voigt {
+    consistent_stress_of(&mut Classified::new(eff), dt, dc, s0, nu)
+}
+
+/// [`consistent_stress`] of a [`Classified`] effective stress (its invariants and principal
+/// values shared with [`lee_fenves_damage`]).
+pub fn consistent_stress_of(c: &mut Classified, dt: f64, dc: f64, s0: f64, nu: f64) -> Voigt {
+    let eff = c.eff;
     // D_t = 1 (e^(−y) underflows): the limit of an open crack carrying no tension; capped so
     // that A and φ stay finite (the stress changes by ~1e-12 of σ̄).
     let dt = dt.min(1.0 - 1e-12);
@@ -111,32 +162,56 @@ pub fn consistent_stress(eff: &Voigt, dt: f64, dc: f64, s0: f64, nu: f64) -> Voi
         // D_t = 0 or s₀ = 1: isotropic, σ = (1 − D_c)(1 − s₀D_t) σ̄.
         return eff.map(|v| v * (1.0 - dc) / a);
     }
-    let (i1, q) = invariants(eff);
-    if i1 / 3.0 + 2.0 * q / 3.0 <= 0.0 {
+    if c.surely_compressed() {
         // Pure compression: P = ∅.
         return eff.map(|v| v * (1.0 - dc) / a);
     }
-    let p = principal_values(eff);
+    let p = c.values();
     let (m, sig) = select(&p, dc, a, phi, nu);
-    if m == 0 || m == 3 {
-        // Every k_i equal: σ = ((1 − D_c)(1+ν)/k) σ̄ + ((AνS − (1 − D_c)ν tr σ̄)/k) 1.
-        let k = a * (1.0 + nu) + if m == 3 { phi } else { 0.0 };
-        let tr = p[0] + p[1] + p[2];
-        let s = sig[0] + sig[1] + sig[2];
-        let c1 = (1.0 - dc) * (1.0 + nu) / k;
-        let c0 = (a * nu * s - (1.0 - dc) * nu * tr) / k;
-        return [
-            c1 * eff[0] + c0,
-            c1 * eff[1] + c0,
-            c1 * eff[2] + c0,
-            c1 * eff[3],
-            c1 * eff[4],
-            c1 * eff[5],
-        ];
+    // σᵢ = ((1 − D_c)(1+ν) σ̂ᵢ + C)/kᵢ with C = AνS − (1 − D_c)ν tr σ̄ (principal_stresses):
+    // one linear map g_k(λ) = ((1 − D_c)(1+ν)λ + C)/k per set, applied to σ̄ as a whole.
+    let tr = p[0] + p[1] + p[2];
+    let s = sig[0] + sig[1] + sig[2];
+    let a1 = (1.0 - dc) * (1.0 + nu);
+    let c = a * nu * s - (1.0 - dc) * nu * tr;
+    let k0 = a * (1.0 + nu);
+    // The direction whose value is farther from the middle one ([`Spectral::with_values`]'s
+    // choice): its eigenvector, alone, is accurate to rounding over the gap.
+    let top_isolated = p[0] - p[1] >= p[1] - p[2];
+    let (k, lone) = match (m, top_isolated) {
+        // Every kᵢ equal: σ = g_k(σ̄).
+        (0, _) => (k0, None),
+        (3, _) => (k0 + phi, None),
+        // The isolated direction alone in its set (n₁ in tension, or n₃ in compression),
+        // the other two sharing a map g_k: σ = g_k(σ̄) + (σᵢ − g_k(σ̂ᵢ)) nᵢ⊗nᵢ — one
+        // eigenvector, no plane basis.
+        (1, true) => (k0, Some(0)),
+        (2, false) => (k0 + phi, Some(2)),
+        // The close pair split between the sets: each of its directions is needed.
+        _ => {
+            let sp = Spectral::with_values(eff, p);
+            let sig = principal_stresses(&sp.values, m, dc, a, phi, nu);
+            return sp.stress_voigt(&sig);
+        }
+    };
+    let c1 = a1 / k;
+    let c0 = c / k;
+    let mut out = [
+        c1 * eff[0] + c0,
+        c1 * eff[1] + c0,
+        c1 * eff[2] + c0,
+        c1 * eff[3],
+        c1 * eff[4],
+        c1 * eff[5],
+    ];
+    if let Some(i) = lone {
+        let w = sig[i] - (a1 * p[i] + c) / k;
+        let nn = eigenprojector(eff, p[i]);
+        for (o, v) in out.iter_mut().zip(nn) {
+            *o += w * v;
+        }
     }
-    let sp = Spectral::of(eff);
-    let sig = principal_stresses(&sp.values, m, dc, a, phi, nu);
-    sp.stress_voigt(&sig)
+    out
 }
 
 /// The tension set P = first `m` directions whose stresses have the assumed signs; when
@@ -208,6 +283,60 @@ mod tests {
                 assert!(out[3..].iter().all(|v| v.abs() < 1e-6));
             }
         }
+    }
+
+    /// The form with one projector against the full spectral sum Σ σᵢ nᵢ⊗nᵢ (every
+    /// eigenpair, σᵢ by `select`): random rotated states of every sign pattern,
+    /// with nearly double and double principal values, to 1e-10 of the largest component.
+    #[test]
+    fn one_projector_form_equals_the_spectral_sum() {
+        use nalgebra::{Matrix3, Rotation3, Vector3};
+        let mut lcg = crate::test_random::Lcg(0x0dd5_eed5_7e55_0001);
+        let mut rand = move || lcg.next();
+        let mut mixed = [0usize; 4];
+        for case in 0..4000 {
+            let (a, b) = (4e6 * (rand() - 0.5), 4e6 * (rand() - 0.5));
+            let values = match case % 5 {
+                0 => [a, b, 4e6 * (rand() - 0.5)],
+                1 => [a, a, b],
+                2 => [a, b, b],
+                3 => [a, a * (1.0 + 1e-9 * rand()), b],
+                _ => [a, b, b + 1e-3 * rand()],
+            };
+            let r = Rotation3::from_euler_angles(7.0 * rand(), 7.0 * rand(), 7.0 * rand());
+            let m = r.matrix()
+                * Matrix3::from_diagonal(&Vector3::from(values))
+                * r.matrix().transpose();
+            let eff = [
+                m[(0, 0)],
+                m[(1, 1)],
+                m[(2, 2)],
+                m[(0, 1)],
+                m[(1, 2)],
+                m[(0, 2)],
+            ];
+            let (dt, dc) = (0.02 + 0.97 * rand(), 0.6 * rand());
+            let s0 = [0.0, 0.2, 0.7][case % 3];
+            let out = consistent_stress(&eff, dt, dc, s0, NU);
+            // Reference: the full spectral sum over the closed-form eigenpairs
+            // (`Spectral`, checked against nalgebra's iterative solver in `principal.rs`),
+            // the stresses of the tension set its values select.
+            let sp = Spectral::of(&eff);
+            let a_ = 1.0 / (1.0 - s0 * dt);
+            let phi = 1.0 / (1.0 - dt) - a_;
+            let (k, sig) = select(&sp.values, dc, a_, phi, NU);
+            mixed[k] += 1;
+            let reference = sp.stress_voigt(&sig);
+            let scale = eff.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+            for i in 0..6 {
+                assert!(
+                    (out[i] - reference[i]).abs() <= 1e-10 * scale,
+                    "case {case}: {eff:?} dt {dt} dc {dc} s0 {s0}: {out:?} vs {reference:?}"
+                );
+            }
+        }
+        // Every tension set was exercised.
+        assert!(mixed.iter().all(|&n| n > 100), "{mixed:?}");
     }
 
     #[test]

@@ -142,13 +142,8 @@ mod tests {
     fn invariant_bound_never_misses_a_yielding_stress() {
         let y = surface(1.16, 2.0 / 3.0);
         let (ft, fc) = (2.9e6, 13e6);
-        let mut seed = 12345u64;
-        let mut rnd = || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 3.0e7
-        };
+        let mut lcg = crate::test_random::Lcg(12345);
+        let mut rnd = || (lcg.next() - 0.5) * 3.0e7;
         let mut inside = 0;
         for _ in 0..20000 {
             let v = [rnd(), rnd(), rnd(), rnd() * 0.3, rnd() * 0.3, rnd() * 0.3];

@@ -221,6 +221,21 @@ fn plane_vectors(a: &Matrix3<f64>, n: &Vector3<f64>) -> (Vector3<f64>, Vector3<f
     (u * cos + w * sin, w * cos - u * sin)
 }
 
+/// R diag(values) Rᵀ as a stress-like Voigt vector (tests: a tensor with known principal
+/// values and axes).
+#[cfg(test)]
+pub fn rotated_voigt(r: &Matrix3<f64>, values: [f64; 3]) -> Voigt {
+    let m = r * Matrix3::from_diagonal(&Vector3::from(values)) * r.transpose();
+    [
+        m[(0, 0)],
+        m[(1, 1)],
+        m[(2, 2)],
+        m[(0, 1)],
+        m[(1, 2)],
+        m[(0, 2)],
+    ]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -294,15 +309,7 @@ mod tests {
                 3 => [a, a, a],
                 _ => [a, a * (1.0 + 1e-9 * rand()), b],
             };
-            let m = r * Matrix3::from_diagonal(&Vector3::from(values)) * r.transpose();
-            cases.push([
-                m[(0, 0)],
-                m[(1, 1)],
-                m[(2, 2)],
-                m[(0, 1)],
-                m[(1, 2)],
-                m[(0, 2)],
-            ]);
+            cases.push(rotated_voigt(&r, values));
         }
         cases.push([0.0; 6]);
         cases.push([2.9e6, 0.0, 0.0, 0.0, 0.0, 0.0]);
@@ -378,16 +385,7 @@ mod tests {
             for (k, axis) in axes.iter().enumerate() {
                 let scale = 1e7;
                 let r = Rotation3::from_axis_angle(axis, 0.37 * (k as f64 + 1.0));
-                let d = Matrix3::from_diagonal(&(Vector3::new(v[0], v[1], v[2]) * scale));
-                let a = r.matrix() * d * r.matrix().transpose();
-                let s = [
-                    a[(0, 0)],
-                    a[(1, 1)],
-                    a[(2, 2)],
-                    a[(0, 1)],
-                    a[(1, 2)],
-                    a[(0, 2)],
-                ];
+                let s = rotated_voigt(r.matrix(), [v[0] * scale, v[1] * scale, v[2] * scale]);
                 let got = definiteness(&s);
                 // Rotation rounds exact zeros to rounding noise: a zero value then counts
                 // as either sign, nothing else may differ.

@@ -290,7 +290,8 @@ mod tests {
     /// with nearly double and double principal values, to 1e-10 of the largest component.
     #[test]
     fn one_projector_form_equals_the_spectral_sum() {
-        use nalgebra::{Matrix3, Rotation3, Vector3};
+        use super::super::principal::rotated_voigt;
+        use nalgebra::Rotation3;
         let mut lcg = crate::test_random::Lcg(0x0dd5_eed5_7e55_0001);
         let mut rand = move || lcg.next();
         let mut mixed = [0usize; 4];
@@ -304,17 +305,7 @@ mod tests {
                 _ => [a, b, b + 1e-3 * rand()],
             };
             let r = Rotation3::from_euler_angles(7.0 * rand(), 7.0 * rand(), 7.0 * rand());
-            let m = r.matrix()
-                * Matrix3::from_diagonal(&Vector3::from(values))
-                * r.matrix().transpose();
-            let eff = [
-                m[(0, 0)],
-                m[(1, 1)],
-                m[(2, 2)],
-                m[(0, 1)],
-                m[(1, 2)],
-                m[(0, 2)],
-            ];
+            let eff = rotated_voigt(r.matrix(), values);
             let (dt, dc) = (0.02 + 0.97 * rand(), 0.6 * rand());
             let s0 = [0.0, 0.2, 0.7][case % 3];
             let out = consistent_stress(&eff, dt, dc, s0, NU);

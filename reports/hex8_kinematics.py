@@ -73,28 +73,82 @@ def char_lengths(coords: np.ndarray, conn: np.ndarray, vol: np.ndarray) -> np.nd
     return vol / np.max(np.stack(areas, axis=1), axis=1)
 
 
+def natural_coordinates(x: np.ndarray, points: np.ndarray) -> np.ndarray:
+    """ξ of each point (n, 3) in its element, nodal coordinates x (n, 8, 3): Newton on
+    x(ξ) = x from ξ = 0, each point until its step is below 1e-12 (at most 50 steps)."""
+    xi = np.zeros((len(points), 3))
+    todo = np.arange(len(points))
+    for _ in range(50):
+        if len(todo) == 0:
+            break
+        xe, z = x[todo], xi[todo]
+        r = np.einsum("ka,kai->ki", shape_values(z), xe) - points[todo]
+        jac = np.einsum("kai,kaj->kij", xe, shape_derivatives(z))
+        step = np.linalg.solve(jac, r[:, :, None])[:, :, 0]
+        xi[todo] = z - step
+        todo = todo[np.max(np.abs(step), axis=1) >= 1e-12]
+    return xi
+
+
+def _bbox_pairs(lo: np.ndarray, hi: np.ndarray, points: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
+    """Every (point, box) with the point inside the box [lo, hi], sorted by point then box:
+    boxes binned on a uniform grid of their median extent, so each point meets the few
+    boxes of its cell rather than all of them."""
+    h = float(np.median(np.max(hi - lo, axis=1)))
+    if not np.isfinite(h) or h <= 0.0:
+        h = 1.0
+    origin = np.minimum(lo.min(axis=0), points.min(axis=0))
+    b0 = np.floor((lo - origin) / h).astype(np.int64)
+    b1 = np.floor((hi - origin) / h).astype(np.int64)
+    dims = np.maximum(b1.max(axis=0), np.floor((points.max(axis=0) - origin) / h).astype(np.int64)) + 1
+    span = b1 - b0 + 1
+    count = np.prod(span, axis=1)
+    box = np.repeat(np.arange(len(lo)), count)
+    # The k-th cell of a box's range, k = 0 .. count−1, as (i, j, l) offsets.
+    k = np.arange(len(box)) - np.repeat(np.cumsum(count) - count, count)
+    sy, sz = span[box, 1], span[box, 2]
+    cell = b0[box] + np.stack([k // (sy * sz), (k // sz) % sy, k % sz], axis=1)
+    key = (cell[:, 0] * dims[1] + cell[:, 1]) * dims[2] + cell[:, 2]
+    order = np.argsort(key, kind="stable")
+    key, box = key[order], box[order]
+    pc = np.floor((points - origin) / h).astype(np.int64)
+    inside_grid = np.all((pc >= 0) & (pc < dims), axis=1)
+    pkey = (pc[:, 0] * dims[1] + pc[:, 1]) * dims[2] + pc[:, 2]
+    start = np.searchsorted(key, pkey, side="left")
+    stop = np.searchsorted(key, pkey, side="right")
+    stop = np.where(inside_grid, stop, start)
+    n = stop - start
+    pt = np.repeat(np.arange(len(points)), n)
+    at = np.repeat(start, n) + np.arange(n.sum()) - np.repeat(np.cumsum(n) - n, n)
+    bx = box[at]
+    keep = np.all((points[pt] >= lo[bx]) & (points[pt] <= hi[bx]), axis=1)
+    pt, bx = pt[keep], bx[keep]
+    order = np.lexsort((bx, pt))
+    return pt[order], bx[order]
+
+
 def locate(coords: np.ndarray, conn: np.ndarray, candidates: np.ndarray, points: np.ndarray,
            slack: float = 1e-9) -> tuple[np.ndarray, np.ndarray]:
     """For every point (n, 3) the first element among `candidates` (element ids) that holds
-    it (|ξ_i| ≤ 1 + slack after Newton on x(ξ) = x, to 1e-12) and its ξ; −1 where none."""
+    it (|ξ_i| ≤ 1 + slack after Newton on x(ξ) = x, to 1e-12) and its ξ; −1 where none.
+    The candidates whose bounding box holds a point are tried in their order, all points'
+    first ones together, then the second ones of the points still without a host, …"""
+    candidates = np.asarray(candidates)
     x = coords[conn[candidates]]  # (m, 8, 3)
     lo, hi = x.min(axis=1) - 1e-9, x.max(axis=1) + 1e-9
     host = np.full(len(points), -1)
     xi_out = np.zeros((len(points), 3))
-    for k, p in enumerate(points):
-        inside = np.nonzero(np.all((p >= lo) & (p <= hi), axis=1))[0]
-        for c in inside:
-            xe = x[c]
-            xi = np.zeros(3)
-            for _ in range(50):
-                r = shape_values(xi[None, :])[0] @ xe - p
-                jac = np.einsum("ai,aj->ij", xe, shape_derivatives(xi[None, :])[0])
-                step = np.linalg.solve(jac, r)
-                xi -= step
-                if np.max(np.abs(step)) < 1e-12:
-                    break
-            if np.all(np.abs(xi) <= 1.0 + slack):
-                host[k] = candidates[c]
-                xi_out[k] = xi
-                break
+    if len(points) == 0 or len(candidates) == 0:
+        return host, xi_out
+    pt, bx = _bbox_pairs(lo, hi, points)
+    rank = np.arange(len(pt)) - np.searchsorted(pt, pt, side="left")
+    for r in range(int(rank.max()) + 1 if len(rank) else 0):
+        sel = np.nonzero((rank == r) & (host[pt] < 0))[0]
+        if len(sel) == 0:
+            continue
+        p, c = pt[sel], bx[sel]
+        xi = natural_coordinates(x[c], points[p])
+        ok = np.all(np.abs(xi) <= 1.0 + slack, axis=1)
+        host[p[ok]] = candidates[c[ok]]
+        xi_out[p[ok]] = xi[ok]
     return host, xi_out

@@ -448,13 +448,14 @@ def anchor_checks(run: Path, frames: list[tuple[float, Path]], case: dict[str, A
         k = int(np.argmax(host < 0))
         raise CheckError(f"{bars[0][1]}: segment {k} (bar {bar[k]}) at {0.5 * (p[k] + q[k])} lies in no active element")
     shape = []
+    xh = coords[conn[host]]  # (segments, 8, 3)
     for ends in (p, q):
-        xi = np.zeros((len(ends), 3))
-        for k, (e, x) in enumerate(zip(host, ends)):
-            h, xk = hk.locate(coords, conn, np.array([e]), x[None, :], slack=1e-7)
-            if h[0] != e:
-                raise CheckError(f"{bars[0][1]}: an end of segment {k} lies outside the element {e} holding its midpoint")
-            xi[k] = xk[0]
+        xi = hk.natural_coordinates(xh, ends)
+        in_box = np.all((ends >= xh.min(axis=1) - 1e-9) & (ends <= xh.max(axis=1) + 1e-9), axis=1)
+        outside = ~(in_box & np.all(np.abs(xi) <= 1.0 + 1e-7, axis=1))
+        if np.any(outside):
+            k = int(np.argmax(outside))
+            raise CheckError(f"{bars[0][1]}: an end of segment {k} lies outside the element {host[k]} holding its midpoint")
         shape.append(hk.shape_values(xi))
     # A bar's segments run from its start (a pattern bolt's head, on the excavation face) to
     # its end (deep in the rock) and tile it, so their elongations add up to the bar's,

@@ -168,12 +168,13 @@ pub fn consistent_stress_of(c: &mut Classified, dt: f64, dc: f64, s0: f64, nu: f
     }
     let p = c.values();
     let (m, sig) = select(&p, dc, a, phi, nu);
-    // σᵢ = ((1 − D_c)(1+ν) σ̂ᵢ + C)/kᵢ with C = AνS − (1 − D_c)ν tr σ̄ (principal_stresses):
+    // σᵢ = ((1 − D_c)(1+ν) σ̂ᵢ + C)/kᵢ with C = AνS − (1 − D_c)ν tr σ̄ (`offset`,
+    // principal_stresses):
     // one linear map g_k(λ) = ((1 − D_c)(1+ν)λ + C)/k per set, applied to σ̄ as a whole.
     let tr = p[0] + p[1] + p[2];
     let s = sig[0] + sig[1] + sig[2];
     let a1 = (1.0 - dc) * (1.0 + nu);
-    let c = a * nu * s - (1.0 - dc) * nu * tr;
+    let offset = a * nu * s - (1.0 - dc) * nu * tr;
     let k0 = a * (1.0 + nu);
     // The direction whose value is farther from the middle one ([`Spectral::with_values`]'s
     // choice): its eigenvector, alone, is accurate to rounding over the gap.
@@ -195,7 +196,7 @@ pub fn consistent_stress_of(c: &mut Classified, dt: f64, dc: f64, s0: f64, nu: f
         }
     };
     let c1 = a1 / k;
-    let c0 = c / k;
+    let c0 = offset / k;
     let mut out = [
         c1 * eff[0] + c0,
         c1 * eff[1] + c0,
@@ -205,7 +206,7 @@ pub fn consistent_stress_of(c: &mut Classified, dt: f64, dc: f64, s0: f64, nu: f
         c1 * eff[5],
     ];
     if let Some(i) = lone {
-        let w = sig[i] - (a1 * p[i] + c) / k;
+        let w = sig[i] - (a1 * p[i] + offset) / k;
         let nn = eigenprojector(eff, p[i]);
         for (o, v) in out.iter_mut().zip(nn) {
             *o += w * v;

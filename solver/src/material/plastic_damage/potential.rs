@@ -117,8 +117,7 @@ impl TrialSplit {
         Self {
             mean,
             dev,
-            // von_mises(trial), from the deviator it forms the same way
-            q: (1.5 * (dev[0] * dev[0] + dev[1] * dev[1] + dev[2] * dev[2])).sqrt(),
+            q: super::yield_surface::von_mises_of_deviator(&dev),
         }
     }
 }

@@ -108,11 +108,11 @@ fn weight(c: &mut Classified) -> f64 {
 
 /// D of eq. (24), D = 1 − (1 − D_c)(1 − s D_t), s = s₀ + (1 − s₀) r(σ̄).
 #[inline]
-pub fn lee_fenves_damage(eff: &mut Classified, dt: f64, dc: f64, s0: f64) -> f64 {
+pub fn lee_fenves_damage(c: &mut Classified, dt: f64, dc: f64, s0: f64) -> f64 {
     if dt == 0.0 {
         return dc;
     }
-    let s = s0 + (1.0 - s0) * weight(eff);
+    let s = s0 + (1.0 - s0) * weight(c);
     1.0 - (1.0 - dc) * (1.0 - s * dt)
 }
 

@@ -69,8 +69,13 @@ pub fn invariants(s: &[f64; 6]) -> (f64, f64) {
 #[inline]
 pub fn von_mises(s: &[f64; 3]) -> f64 {
     let m = (s[0] + s[1] + s[2]) / 3.0;
-    let (a, b, c) = (s[0] - m, s[1] - m, s[2] - m);
-    (1.5 * (a * a + b * b + c * c)).sqrt()
+    von_mises_of_deviator(&[s[0] - m, s[1] - m, s[2] - m])
+}
+
+/// √(3 J₂) = √(3/2 |s|²) of principal deviatoric stresses `dev`.
+#[inline]
+pub fn von_mises_of_deviator(dev: &[f64; 3]) -> f64 {
+    (1.5 * (dev[0] * dev[0] + dev[1] * dev[1] + dev[2] * dev[2])).sqrt()
 }
 
 /// Lee–Fenves (1998) weight of the tensile principal effective stresses,

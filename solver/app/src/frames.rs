@@ -5,16 +5,18 @@
 //! ([`crate::output::write_vtu_compressed`]), and the anchor bars with their axial forces.
 //! The frames form the run's time series (`case.pvd`); the anchor frames their own
 //! (`anchors.pvd`), every `anchors_every` steps (a multiple of `vtu_every`; 0: with every
-//! frame). The run driver writes the whole mesh less often (`full.pvd`).
+//! frame). The run driver writes the whole mesh less often (`full.pvd`, Float64,
+//! zlib-compressed unless `full_encoding = "base64"`).
 
 use std::path::Path;
 
-use dcfm::case::FramesSection;
+use dcfm::case::{FramesSection, WholeMeshEncoding};
 use dcfm::error::Result;
 use dcfm::stage::Simulation;
 
 use crate::output::{
-    write_vtu_compressed, write_vtu_lines, CellSubset, PvdCollection, VtuField, VtuStrings,
+    write_vtu_compressed, write_vtu_lines, CellSubset, Precision, PvdCollection, VtuField,
+    VtuStrings,
 };
 
 /// The compact frames of a run.
@@ -25,6 +27,8 @@ pub struct CompactFrames {
     full: PvdCollection,
     /// Steps between two frames of the whole mesh (0: first and last only).
     pub full_every: u64,
+    /// How the whole-mesh frames are stored.
+    pub full_encoding: WholeMeshEncoding,
     /// Steps between two frames of the anchor bars (`anchors_every`, or `vtu_every` when
     /// that is 0; 0: first and last only).
     pub anchors_every: u64,
@@ -102,6 +106,7 @@ impl CompactFrames {
             anchors,
             full: open("full.pvd", section.full_every)?,
             full_every: section.full_every,
+            full_encoding: section.full_encoding,
             anchors_every,
         })
     }
@@ -215,6 +220,7 @@ impl CompactFrames {
         let name = format!("frame_{:06}.vtu", sim.step);
         write_vtu_compressed(
             &out.join(&name),
+            Precision::Float32,
             &s.coords,
             &s.cells,
             &point_fields,

@@ -9,7 +9,7 @@ use serde::Serialize;
 
 use dcfm::case::fingerprint::CaseFingerprint;
 use dcfm::case::probes::Probes;
-use dcfm::case::{Case, CaseWarning, OutputSection};
+use dcfm::case::{Case, CaseWarning, OutputSection, WholeMeshEncoding};
 use dcfm::error::{DcfmError, Result};
 use dcfm::stage::checkpoint::{read_checkpoint, write_checkpoint};
 use dcfm::stage::checkpoint_seal::{open_checkpoint, SealedWriter};
@@ -17,7 +17,8 @@ use dcfm::stage::static_stage::StaticResult;
 use dcfm::stage::{Energies, Simulation, StepSchedule};
 
 use crate::output::{
-    write_atomic_with, write_summary, write_vtu, HistoryWriter, PvdCollection, VtuField, VtuStrings,
+    write_atomic_with, write_summary, write_vtu, write_vtu_compressed, HistoryWriter, Precision,
+    PvdCollection, VtuField, VtuStrings,
 };
 
 /// How to run.
@@ -342,11 +343,12 @@ fn write_frame(
     last: bool,
 ) -> Result<()> {
     match frames {
-        None => write_state_vtu(sim, out, pvd),
+        None => write_state_vtu(sim, out, pvd, WholeMeshEncoding::Base64),
         Some(f) => {
             f.write(sim, out, pvd, first, last)?;
             if f.full_due(sim.step, first, last) {
-                write_state_vtu(sim, out, f.full_collection())?;
+                let encoding = f.full_encoding;
+                write_state_vtu(sim, out, f.full_collection(), encoding)?;
             }
             Ok(())
         }
@@ -354,16 +356,29 @@ fn write_frame(
 }
 
 /// Write one VTU of the current state and add it to the collection.
-fn write_state_vtu(sim: &Simulation, out: &Path, pvd: &mut PvdCollection) -> Result<()> {
-    write_state_vtu_named(sim, out, pvd, &format!("mesh_{:06}.vtu", sim.step))
+fn write_state_vtu(
+    sim: &Simulation,
+    out: &Path,
+    pvd: &mut PvdCollection,
+    encoding: WholeMeshEncoding,
+) -> Result<()> {
+    write_state_vtu_named(
+        sim,
+        out,
+        pvd,
+        &format!("mesh_{:06}.vtu", sim.step),
+        encoding,
+    )
 }
 
-/// Write the VTU of the current state as `name` and add it to the collection.
+/// Write the VTU of the current state as `name` in `encoding` (Float64 either way) and add
+/// it to the collection.
 fn write_state_vtu_named(
     sim: &Simulation,
     out: &Path,
     pvd: &mut PvdCollection,
     name: &str,
+    encoding: WholeMeshEncoding,
 ) -> Result<()> {
     let model = &sim.model;
     let ne = model.n_elements();
@@ -439,68 +454,82 @@ fn write_state_vtu_named(
             values,
         });
     }
-    write_vtu(
-        &out.join(name),
-        &model.mesh.coords,
-        &model.mesh.elements,
-        &point_fields,
-        &[
-            VtuField {
-                name: "stress",
-                components: 6,
-                values: &stress,
-            },
-            VtuField {
-                name: "strain",
-                components: 6,
-                values: &strain,
-            },
-            VtuField {
-                name: "damage",
-                components: 1,
-                values: &d,
-            },
-            VtuField {
-                name: "damage_tension",
-                components: 1,
-                values: &dt,
-            },
-            VtuField {
-                name: "damage_compression",
-                components: 1,
-                values: &dc,
-            },
-            VtuField {
-                name: "kappa_tension",
-                components: 1,
-                values: &kt,
-            },
-            VtuField {
-                name: "kappa_compression",
-                components: 1,
-                values: &kc,
-            },
-            VtuField {
-                name: "plastic_strain",
-                components: 6,
-                values: &ep,
-            },
-            VtuField {
-                name: "region",
-                components: 1,
-                values: &region,
-            },
-            VtuField {
-                name: "active",
-                components: 1,
-                values: &cell_active,
-            },
-        ],
-        &[VtuStrings {
-            name: "region_names",
-            values: &model.region_names,
-        }],
-    )?;
+    let cell_fields = [
+        VtuField {
+            name: "stress",
+            components: 6,
+            values: &stress,
+        },
+        VtuField {
+            name: "strain",
+            components: 6,
+            values: &strain,
+        },
+        VtuField {
+            name: "damage",
+            components: 1,
+            values: &d,
+        },
+        VtuField {
+            name: "damage_tension",
+            components: 1,
+            values: &dt,
+        },
+        VtuField {
+            name: "damage_compression",
+            components: 1,
+            values: &dc,
+        },
+        VtuField {
+            name: "kappa_tension",
+            components: 1,
+            values: &kt,
+        },
+        VtuField {
+            name: "kappa_compression",
+            components: 1,
+            values: &kc,
+        },
+        VtuField {
+            name: "plastic_strain",
+            components: 6,
+            values: &ep,
+        },
+        VtuField {
+            name: "region",
+            components: 1,
+            values: &region,
+        },
+        VtuField {
+            name: "active",
+            components: 1,
+            values: &cell_active,
+        },
+    ];
+    let field_data = [VtuStrings {
+        name: "region_names",
+        values: &model.region_names,
+    }];
+    let (path, coords, cells) = (out.join(name), &model.mesh.coords, &model.mesh.elements);
+    match encoding {
+        WholeMeshEncoding::Base64 => write_vtu(
+            &path,
+            coords,
+            cells,
+            &point_fields,
+            &cell_fields,
+            &field_data,
+        ),
+        WholeMeshEncoding::Zlib => write_vtu_compressed(
+            &path,
+            Precision::Float64,
+            coords,
+            cells,
+            &point_fields,
+            &cell_fields,
+            &field_data,
+        ),
+    }?;
     pvd.add(sim.time, name)
 }
 
@@ -599,12 +628,14 @@ fn failure_frame_step(file: &str) -> Option<u64> {
 /// Write the failure frame of a run stopped by `error` (docs/outputs.md, "A failed
 /// run"): after an instability, the state the failed step reached (the diverging motion;
 /// [`Simulation::adopt_failed_step`]), else the last state; as `mesh_NNNNNN_failed.vtu`,
-/// written atomically and listed last in `pvd` (replacing a frame of the same time).
+/// written atomically in `encoding` and listed last in `pvd` (replacing a frame of the
+/// same time).
 fn write_failure_frame(
     sim: &mut Simulation,
     error: &DcfmError,
     out: &Path,
     pvd: &mut PvdCollection,
+    encoding: WholeMeshEncoding,
 ) -> Result<String> {
     if matches!(error, DcfmError::Unstable { .. }) {
         sim.adopt_failed_step();
@@ -614,7 +645,7 @@ fn write_failure_frame(
         pvd.retain(|e| e.time < t)?;
     }
     let name = format!("mesh_{:06}_failed.vtu", sim.step);
-    write_state_vtu_named(sim, out, pvd, &name)?;
+    write_state_vtu_named(sim, out, pvd, &name, encoding)?;
     Ok(name)
 }
 
@@ -913,7 +944,10 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
             if let Err(h) = hist.flush() {
                 text += &format!("; histories.csv could not be completed: {h}");
             }
-            let frame = match write_failure_frame(&mut sim, e, out, &mut pvd) {
+            let encoding = frames
+                .as_ref()
+                .map_or(WholeMeshEncoding::Base64, |f| f.full_encoding);
+            let frame = match write_failure_frame(&mut sim, e, out, &mut pvd, encoding) {
                 Ok(name) => Some(name),
                 Err(f) => {
                     text += &format!("; the failure frame could not be written: {f}");

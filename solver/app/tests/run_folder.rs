@@ -386,3 +386,116 @@ fn a_resumed_run_keeps_anchors_pvd_on_the_anchors_every_schedule() {
     assert_eq!(vtu_files(&root.join("full")), vtu_files(&root.join("part")));
     let _ = std::fs::remove_dir_all(&root);
 }
+
+/// Array `name` of a zlib-compressed raw appended VTU (VTK's `vtkZLibDataCompressor`
+/// layout, docs/outputs.md) as Float64 values, decoded as a reader would.
+fn zlib_array(file: &[u8], name: &str) -> Vec<f64> {
+    use std::io::Read;
+    let text = String::from_utf8_lossy(file);
+    let tag = text
+        .find(&format!("Name=\"{name}\""))
+        .unwrap_or_else(|| panic!("no array {name}"));
+    let head = &text[text[..tag].rfind('<').unwrap()..];
+    assert!(
+        head.starts_with("<DataArray type=\"Float64\""),
+        "{head:.80}"
+    );
+    let o = head.find("offset=\"").unwrap() + 8;
+    let offset: usize = head[o..o + head[o..].find('"').unwrap()].parse().unwrap();
+    let marker = b"encoding=\"raw\">";
+    let start = file
+        .windows(marker.len())
+        .position(|w| w == marker)
+        .unwrap();
+    let start = start + file[start..].iter().position(|&b| b == b'_').unwrap() + 1;
+    let data = &file[start + offset..];
+    let word = |i: usize| u64::from_le_bytes(data[8 * i..8 * i + 8].try_into().unwrap()) as usize;
+    let blocks = word(0);
+    let mut pos = 8 * (3 + blocks);
+    let mut bytes = Vec::new();
+    for b in 0..blocks {
+        let len = word(3 + b);
+        flate2::read::ZlibDecoder::new(&data[pos..pos + len])
+            .read_to_end(&mut bytes)
+            .unwrap();
+        pos += len;
+    }
+    bytes
+        .chunks(8)
+        .map(|c| f64::from_le_bytes(c.try_into().unwrap()))
+        .collect()
+}
+
+/// Array `name` (a point or a cell field) of a base64 VTU, read with vtkio.
+fn base64_array(path: &Path, name: &str) -> Vec<f64> {
+    use vtkio::model::{Attribute, DataSet, Piece};
+    let vtk = vtkio::Vtk::import(path).expect("vtkio reads the file");
+    let DataSet::UnstructuredGrid { mut pieces, .. } = vtk.data else {
+        panic!("not an unstructured grid");
+    };
+    let Piece::Inline(p) = pieces.remove(0) else {
+        panic!("not an inline piece");
+    };
+    p.data
+        .point
+        .iter()
+        .chain(&p.data.cell)
+        .find_map(|a| match a {
+            Attribute::DataArray(d) if d.name == name => {
+                Some(d.data.clone().cast_into::<f64>().unwrap())
+            }
+            _ => None,
+        })
+        .unwrap_or_else(|| panic!("no field {name} in {}", path.display()))
+}
+
+/// The whole-mesh frames of a run with compact frames are zlib-compressed Float64 by
+/// default — the values of the base64 frames (`full_encoding = "base64"`) bit for bit, in
+/// a smaller file — and an unknown encoding is an error that names the key.
+#[test]
+fn whole_mesh_frames_are_compressed_float64_unless_base64_is_asked() {
+    let root = dir("full-encoding");
+    let (zlib, plain) = (root.join("zlib"), root.join("base64"));
+    let text = compact(ANCHORED);
+    run_anchored(&text, &zlib, false);
+    run_anchored(
+        &format!("{text}full_encoding = \"base64\"\n"),
+        &plain,
+        false,
+    );
+    let files = listed(&zlib.join("full.pvd"));
+    assert_eq!(files, listed(&plain.join("full.pvd")));
+    assert!(files.len() >= 3, "{files:?}");
+    for (f, _) in &files {
+        let bytes = std::fs::read(zlib.join(f)).unwrap();
+        let head = String::from_utf8_lossy(&bytes[..bytes.len().min(4000)]).into_owned();
+        assert!(head.contains("compressor=\"vtkZLibDataCompressor\""), "{f}");
+        assert!(
+            !head.contains("Float32"),
+            "{f}: whole-mesh frames are Float64"
+        );
+        let plain_file = plain.join(f);
+        assert!(
+            bytes.len() < std::fs::metadata(&plain_file).unwrap().len() as usize,
+            "{f}: the compressed frame is not smaller"
+        );
+        for name in ["displacement", "velocity", "stress", "strain", "damage"] {
+            let a: Vec<u64> = zlib_array(&bytes, name)
+                .iter()
+                .map(|v| v.to_bits())
+                .collect();
+            let b: Vec<u64> = base64_array(&plain_file, name)
+                .iter()
+                .map(|v| v.to_bits())
+                .collect();
+            assert_eq!(a, b, "{f}: {name}");
+        }
+    }
+    let bad = format!("{text}full_encoding = \"gzip\"\n");
+    let e = parse_case(&bad, "anchored.toml", Path::new("."))
+        .map(|_| ())
+        .expect_err("an unknown encoding is an error")
+        .to_string();
+    assert!(e.contains("full_encoding") && e.contains("gzip"), "{e}");
+    let _ = std::fs::remove_dir_all(&root);
+}

@@ -181,6 +181,9 @@ pub struct FramesSection {
     /// and the last step only.
     #[serde(default)]
     pub full_every: u64,
+    /// How the whole-mesh frames are stored (default zlib-compressed).
+    #[serde(default)]
+    pub full_encoding: WholeMeshEncoding,
     /// A frame of the anchor bars (line cells with their axial force) with the frames.
     #[serde(default = "yes")]
     pub anchors: bool,
@@ -192,6 +195,19 @@ pub struct FramesSection {
 
 fn yes() -> bool {
     true
+}
+
+/// `[output.frames] full_encoding`: the storage of the whole-mesh frames (`full.pvd`),
+/// both Float64, both read by VTK, ParaView and PyVista (docs/outputs.md).
+#[derive(Clone, Copy, Debug, Default, Deserialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum WholeMeshEncoding {
+    /// zlib-compressed raw appended data (VTK's `vtkZLibDataCompressor`): ≈ 0.3 of the
+    /// base64 file on the Yingxiuwan full mesh; generic XML parsers cannot read it.
+    #[default]
+    Zlib,
+    /// Appended base64, as the frames of a run without `[output.frames]`: plain XML.
+    Base64,
 }
 
 /// How the damaged volume of eq. (27) is measured.

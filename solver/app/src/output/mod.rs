@@ -25,7 +25,7 @@ pub use histories::HistoryWriter;
 pub use pvd::{PvdCollection, PvdEntry};
 pub use summary::write_summary;
 pub use vtu::{write_vtu, write_vtu_lines, VtuField};
-pub use vtu_compressed::{write_vtu_compressed, CellSubset};
+pub use vtu_compressed::{write_vtu_compressed, CellSubset, Precision};
 
 /// The display form of a path used in error messages.
 pub(crate) fn label(path: &std::path::Path) -> String {

@@ -289,8 +289,8 @@ damaged_volume = "point"
 
 # Compact frames (docs/outputs.md): case.pvd holds the concrete (its nodes carry the
 # interfaces' contact fields) in Float32 every frame, anchors.pvd the bars' axial force
-# per segment every {anchors_s} s, full.pvd the whole mesh (every field, Float64) every
-# {full_s} s and at the end.
+# per segment every {anchors_s} s, full.pvd the whole mesh (every field, Float64,
+# zlib-compressed; full_encoding = "base64" for plain XML) every {full_s} s and at the end.
 [output.frames]
 regions = ["lining", "inner"]
 full_every = {full}

@@ -879,6 +879,24 @@ def yingxiuwan_post_section(rep: Report, post: dict[str, Any] | None, summary: d
           f"<tbody>{''.join(rows)}</tbody></table></div>")
     rep.m(f"### Damaged locations against the survey\n\n| location | survey found | paper shows | ours at {num(t0)} s | ours at {num(t1)} s | largest damage |\n"
           "|---|---|---|---|---|---|\n" + "\n".join(md) + "\n")
+    levels = post.get("damage_levels") or []
+    if len(levels) == 2 and all(isinstance(x, dict) for x in levels):
+        a, b = levels
+        rows, md = [], []
+        for k, d in enumerate(b.get("levels") or []):
+            cells = [(a.get("either") or [None] * (k + 1))[k]] + [(b.get(c) or [None] * (k + 1))[k] for c in ("tension", "compression", "either")]
+            rows.append(f"<tr><td>{esc(num(d))}</td>" + "".join(f"<td>{esc(num(v))}</td>" for v in cells) + "</tr>")
+            md.append(f"| {num(d)} | " + " | ".join(num(v) for v in cells) + " |")
+        what = (f"Concrete volume (m³; of {num(b.get('concrete_volume'))} m³ of active concrete) whose element damage reaches each level D*: "
+                "the damaged volume of eq. (27) for other thresholds than the case's (the paper states none; its maps run from 0 to 1, "
+                "460.3 m³ at 60 s).")
+        rep.h(f"<h3>Damaged volume by damage level</h3><p>{esc(what)}</p>"
+              '<div class="scroll"><table class="rows"><thead><tr><th>D*</th>'
+              f"<th>max(d<sub>t</sub>, d<sub>c</sub>) at {esc(num(t0))} s</th><th>d<sub>t</sub> at {esc(num(t1))} s</th>"
+              f"<th>d<sub>c</sub> at {esc(num(t1))} s</th><th>max(d<sub>t</sub>, d<sub>c</sub>) at {esc(num(t1))} s</th></tr></thead>"
+              f"<tbody>{''.join(rows)}</tbody></table></div>")
+        rep.m(f"### Damaged volume by damage level\n\n{what}\n\n| D* | max at {num(t0)} s | d_t at {num(t1)} s | d_c at {num(t1)} s | max at {num(t1)} s |\n"
+              "|---|---|---|---|---|\n" + "\n".join(md) + "\n")
     areas = post.get("interface_areas") or {}
     if areas:
         states = ["bonded", "stick", "sliding", "separated"]

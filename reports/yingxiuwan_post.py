@@ -10,8 +10,10 @@ beside the case (`<case>_sets.json`), and writes to --out:
   histories.csv, lining + inner structure) with its value before the earthquake, the onset
   time, the growth per window of the paper's description and the final value; the survey
   table (per named element set: damaged volume and share at the first and the last frame,
-  largest damage, damaged yes/no); the interfaces' contact-state areas at the first and the
-  last row; the anchors' largest force; the run's cost;
+  largest damage, damaged yes/no); the concrete's damaged volume by damage level (d_t,
+  d_c, max(d_t, d_c) ≥ D* for D* in DAMAGE_LEVELS, at the first and the last frame); the
+  interfaces' contact-state areas at the first and the last row; the anchors' largest
+  force; the run's cost;
 - maps (PNG, matplotlib, no display needed): the boundary faces of the lining and of the
   inner structure coloured by the damage max(d_t, d_c) on a fixed 0–1 scale, and the
   contact states of the concrete's interface faces, at the first and the last frame, each
@@ -71,6 +73,11 @@ DAMAGE_THRESHOLD = 0.1
 # A location counts as damaged when this share of its volume is damaged (one element in a
 # hundred: a crack, not a single integration point's round-off).
 DAMAGED_SHARE = 0.01
+
+# Damage levels D* of the damaged-volume-by-level table: how the concrete's damaged volume
+# depends on the threshold, which the paper's eq. (27) does not state (its maps' scale runs
+# from 0 to 1 and it says the damage "did not exceed 0.3" before the earthquake, §4.6.2).
+DAMAGE_LEVELS = (0.1, 0.3, 0.5, 0.7, 0.9, 0.99)
 
 CONTACT_STATES = {0: "bonded", 1: "stick", 2: "sliding", 3: "separated"}
 # The column names of histories.csv for the states (area_<state>_<interface>).
@@ -309,6 +316,23 @@ def frame_table(frame: Frame, sets: dict[str, np.ndarray], sets_path: Path, thre
     return out
 
 
+def damage_levels(frame: Frame, concrete: list[int], levels: tuple[float, ...] = DAMAGE_LEVELS) -> dict[str, Any]:
+    """The concrete's volume (active elements of the regions numbered `concrete`) whose
+    element damage reaches each level: d_t ≥ D*, d_c ≥ D*, max(d_t, d_c) ≥ D* (m³)."""
+    region = frame.cell("region").astype(np.int64)
+    keep = np.isin(region, concrete)
+    vol = hex8_volumes(frame.points, frame.cells)[keep]
+    dt, dc = frame.cell("damage_tension")[keep], frame.cell("damage_compression")[keep]
+    either = np.maximum(dt, dc)
+    return {
+        "levels": list(levels),
+        "concrete_volume": float(vol.sum()),
+        "tension": [float(vol[dt >= d].sum()) for d in levels],
+        "compression": [float(vol[dc >= d].sum()) for d in levels],
+        "either": [float(vol[either >= d].sum()) for d in levels],
+    }
+
+
 def survey_table(first: dict, last: dict) -> list[dict[str, Any]]:
     """The survey's locations (§4.1) against the paper (§4.6, §5.1) and this run: damaged
     yes/no at the first and the last frame (share of the volume ≥ DAMAGED_SHARE)."""
@@ -513,6 +537,8 @@ def post(run: Path, sets_path: Path, out: Path, maps: bool = True) -> dict[str, 
     s0, s1 = frame_table(first, sets, sets_path), frame_table(last, sets, sets_path)
     result["sets_0"], result["sets_end"] = s0, s1
     result["survey"] = survey_table(s0, s1)
+    concrete = [regions.index("lining"), regions.index("inner")]
+    result["damage_levels"] = [damage_levels(first, concrete), damage_levels(last, concrete)]
     result["frame_times"] = [t0, t1]
     result["frame_files"] = [p0.name, p1.name]
     result["threshold"] = DAMAGE_THRESHOLD

@@ -176,6 +176,17 @@ def test_survey_table_and_damaged_volume(tmp_path, compressed):
     assert rows["upper_sidewalls"]["damaged"] is False  # e1 only: 0.08 < 0.1
     assert rows["junctions"]["damaged_share_end"] == pytest.approx(1.0)
     assert rows["crane_beam_corbels"]["damaged_volume_end"] == 0.0
+    # Damaged volume by level: the concrete is e0 (lining, 1 m³), e1 (lining, 2), e2
+    # (inner, 6); e3 (rock) and e4 (inactive) left out. At 3 s d_t = 0.3, 0.05, 0.1 and
+    # d_c = 0, 0.08, 0: d_t ≥ 0.1 e0 + e2 = 7 m³, ≥ 0.3 e0 = 1 m³, none above; d_c below
+    # every level. At 0 s none (d ≤ 0.05).
+    first, last = r["damage_levels"]
+    assert last["levels"] == list(yp.DAMAGE_LEVELS)
+    assert last["concrete_volume"] == pytest.approx(9.0)
+    assert last["tension"] == pytest.approx([7.0, 1.0, 0.0, 0.0, 0.0, 0.0])
+    assert last["either"] == pytest.approx([7.0, 1.0, 0.0, 0.0, 0.0, 0.0])
+    assert last["compression"] == [0.0] * 6
+    assert first["either"] == [0.0] * 6 and first["concrete_volume"] == pytest.approx(9.0)
     # Sets the run directory's sets file does not have are reported as missing.
     assert rows["turbine_floor"]["missing"] and rows["pedestal_inner_wall"]["missing"]
     # The histories: lining + inner = 10, 10.05, 10.25, 18 (rock left out). Onset: the
@@ -192,6 +203,18 @@ def test_survey_table_and_damaged_volume(tmp_path, compressed):
     assert r["interface_areas"]["lr"]["sliding"] == [0.0, 2.0]
     assert r["anchors"]["b"] == {"max": 250.0, "time_of_max": 2.0, "end": 200.0, "yielded_segments_max": 1.0}
     assert r["cost"]["wall_s"] == 1.5
+
+
+def test_damage_levels_by_hand(tmp_path):
+    """Levels between the fixture's values: d_t 0.3, 0.05, 0.1 and d_c 0, 0.08, 0 on the
+    concrete's 1, 2, 6 m³; the rock (d_t 0.9) and the inactive cell (0.9) left out."""
+    run, _ = make_run(tmp_path)
+    frame = yp.read_vtu(run / "f1.vtu")
+    r = yp.damage_levels(frame, [1, 2], (0.05, 0.08, 0.95))
+    assert r["tension"] == pytest.approx([9.0, 7.0, 0.0])
+    assert r["compression"] == pytest.approx([2.0, 2.0, 0.0])
+    assert r["either"] == pytest.approx([9.0, 9.0, 0.0])
+    assert yp.damage_levels(frame, [0], (0.9,))["tension"] == pytest.approx([7.0 / 3.0])
 
 
 def test_maps_written_and_deterministic(tmp_path):
@@ -303,6 +326,9 @@ def test_report_section_shows_survey_areas_anchors_and_maps(tmp_path):
     assert "| turbine floor |" in md and "set not in the frames" in md
     assert "| lr | 5 → 3 | – → – | 0 → 2 | – → – |" in md
     assert "| b | 250 | 2 | 200 |" in md
+    # Damaged volume by level: D* = 0.1: 0 at 0 s; d_t 7, d_c 0, max 7 m³ at 3 s.
+    assert "### Damaged volume by damage level" in md and "of 9 m³ of active concrete" in md
+    assert "| 0.1 | 0 | 7 | 0 | 7 |" in md and "| 0.3 | 0 | 1 | 0 | 1 |" in md
     assert page.count('src="data:image/png;base64,') >= 6 + 1  # the maps and the damaged-volume plot
     assert 'alt="contact_3 s"' in page
     # A map that post.json lists but that is gone, and a post.json of another run, are named.

@@ -10,7 +10,6 @@ use common::Histories;
 use dcfm::case::parse_case;
 use dcfm_app::output::read_string_arrays;
 use dcfm_app::run::RunSummary;
-use vtkio::model::{Attribute, DataSet, Piece};
 
 /// Two blocks side by side along x (regions "left" and "right"), `[[regions]]` listing
 /// "right" first: the `region` field numbers regions in that order, not in block order.
@@ -60,24 +59,6 @@ fn run(text: &str, out: &Path) -> RunSummary {
     common::run_text("case.toml", text, &common::options(out)).unwrap()
 }
 
-fn cell_field(path: &Path, name: &str) -> Vec<f64> {
-    let vtk = vtkio::Vtk::import(path).expect("vtkio reads the file");
-    let DataSet::UnstructuredGrid { mut pieces, .. } = vtk.data else {
-        panic!("not an unstructured grid");
-    };
-    let Piece::Inline(p) = pieces.remove(0) else {
-        panic!("not an inline piece");
-    };
-    for a in &p.data.cell {
-        if let Attribute::DataArray(d) = a {
-            if d.name == name {
-                return d.data.clone().cast_into::<f64>().unwrap();
-            }
-        }
-    }
-    panic!("no cell field {name}");
-}
-
 #[test]
 fn region_field_numbers_regions_in_case_order_and_the_vtu_names_them() {
     let case = parse_case(TWO_REGIONS, "case.toml", Path::new(".")).unwrap();
@@ -103,7 +84,7 @@ fn region_field_numbers_regions_in_case_order_and_the_vtu_names_them() {
                 vec!["right".to_string(), "left".to_string()]
             )]
         );
-        let region = cell_field(&file, "region");
+        let region = common::vtu_field(&file, "region", true);
         assert_eq!(region.len(), 3);
         for (e, &r) in region.iter().enumerate() {
             // Block "left" (mesh region 0) is [[regions]] entry 1, "right" entry 0.

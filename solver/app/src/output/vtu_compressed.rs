@@ -300,6 +300,16 @@ mod tests {
         out
     }
 
+    /// The `offset` attribute of the DataArray named `name` in a file's text.
+    fn array_offset(text: &str, name: &str) -> usize {
+        let i = text.find(&format!("Name=\"{name}\"")).unwrap();
+        let rest = &text[i..];
+        let o = rest.find("offset=\"").unwrap() + 8;
+        rest[o..o + rest[o..].find('"').unwrap()]
+            .parse::<usize>()
+            .unwrap()
+    }
+
     #[test]
     fn arrays_decode_to_the_values_written() {
         let dir = crate::output::test_dir("vtu-compressed");
@@ -340,14 +350,7 @@ mod tests {
             crate::output::read_string_arrays(header).unwrap(),
             vec![("region_names".to_string(), names.clone())]
         );
-        let offset = |name: &str| {
-            let i = text.find(&format!("Name=\"{name}\"")).unwrap();
-            let rest = &text[i..];
-            let o = rest.find("offset=\"").unwrap() + 8;
-            rest[o..o + rest[o..].find('"').unwrap()]
-                .parse::<usize>()
-                .unwrap()
-        };
+        let offset = |name: &str| array_offset(&text, name);
         let f32s = |b: Vec<u8>| -> Vec<f32> {
             b.chunks(4)
                 .map(|c| f32::from_le_bytes(c.try_into().unwrap()))
@@ -438,14 +441,7 @@ mod tests {
             header.contains("type=\"Float64\" Name=\"stress\""),
             "{header}"
         );
-        let offset = |name: &str| {
-            let i = text.find(&format!("Name=\"{name}\"")).unwrap();
-            let rest = &text[i..];
-            let o = rest.find("offset=\"").unwrap() + 8;
-            rest[o..o + rest[o..].find('"').unwrap()]
-                .parse::<usize>()
-                .unwrap()
-        };
+        let offset = |name: &str| array_offset(&text, name);
         let f64s = |b: Vec<u8>| -> Vec<u64> {
             b.chunks(8)
                 .map(|c| u64::from_le_bytes(c.try_into().unwrap()))

@@ -1,5 +1,6 @@
 //! What the app's integration tests share: the small cases most of them start from, a fresh
-//! output folder, running a case text and reading its histories.csv back.
+//! output folder, running a case text, reading its histories.csv and its base64 VTU
+//! fields back.
 //!
 //! Each test binary includes this module (`mod common;`) and uses a part of it.
 #![allow(dead_code)]
@@ -162,4 +163,26 @@ impl Histories {
         let k = self.index(name);
         self.rows.iter().map(|r| r[k]).collect()
     }
+}
+
+/// Field `name` of a base64 VTU read with vtkio — a point field, or a cell field where
+/// `cells` (a name that is both, `active`, is taken from the side asked for).
+pub fn vtu_field(path: &Path, name: &str, cells: bool) -> Vec<f64> {
+    use vtkio::model::{Attribute, DataSet, Piece};
+    let vtk = vtkio::Vtk::import(path).expect("vtkio reads the file");
+    let DataSet::UnstructuredGrid { mut pieces, .. } = vtk.data else {
+        panic!("not an unstructured grid");
+    };
+    let Piece::Inline(p) = pieces.remove(0) else {
+        panic!("not an inline piece");
+    };
+    let side = if cells { &p.data.cell } else { &p.data.point };
+    side.iter()
+        .find_map(|a| match a {
+            Attribute::DataArray(d) if d.name == name => {
+                Some(d.data.clone().cast_into::<f64>().unwrap())
+            }
+            _ => None,
+        })
+        .unwrap_or_else(|| panic!("no field {name} in {}", path.display()))
 }

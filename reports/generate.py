@@ -838,6 +838,12 @@ def _yes(flag: Any, part: Any) -> str:
     return "–" if flag is None else f"{'yes' if flag else 'no'} ({100 * float(part):.1f} %)"
 
 
+def _nth(d: dict[str, Any], key: str, k: int) -> Any:
+    """Item k of the list d[key], or None where the list is missing or shorter."""
+    values = d.get(key) or []
+    return values[k] if k < len(values) else None
+
+
 def yingxiuwan_post_section(rep: Report, post: dict[str, Any] | None, summary: dict[str, Any]) -> None:
     """The post-processing of the run (reports/yingxiuwan_post.py): the survey table, the
     interfaces' contact areas and the anchors' largest force at the first and the last
@@ -884,7 +890,7 @@ def yingxiuwan_post_section(rep: Report, post: dict[str, Any] | None, summary: d
         a, b = levels
         rows, md = [], []
         for k, d in enumerate(b.get("levels") or []):
-            cells = [(a.get("either") or [None] * (k + 1))[k]] + [(b.get(c) or [None] * (k + 1))[k] for c in ("tension", "compression", "either")]
+            cells = [_nth(a, "either", k)] + [_nth(b, c, k) for c in ("tension", "compression", "either")]
             rows.append(f"<tr><td>{esc(num(d))}</td>" + "".join(f"<td>{esc(num(v))}</td>" for v in cells) + "</tr>")
             md.append(f"| {num(d)} | " + " | ".join(num(v) for v in cells) + " |")
         what = (f"Concrete volume (m³; of {num(b.get('concrete_volume'))} m³ of active concrete) whose element damage reaches each level D*: "

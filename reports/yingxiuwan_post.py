@@ -37,6 +37,7 @@ but pip does not have (docs/yingxiuwan.md).
 from __future__ import annotations
 
 import argparse
+import functools
 import csv
 import json
 import os
@@ -102,6 +103,11 @@ class Frame:
     point_data: dict[str, np.ndarray] = field(default_factory=dict)
     cell_data: dict[str, np.ndarray] = field(default_factory=dict)
     region_names: list[str] = field(default_factory=list)
+
+    @functools.cached_property
+    def volumes(self) -> np.ndarray:
+        """Every cell's volume (hex8_volumes), computed once per frame."""
+        return hex8_volumes(self.points, self.cells)
 
     def cell(self, name: str) -> np.ndarray:
         """A one-component cell field as a flat array (its absence is an error naming the file)."""
@@ -285,7 +291,7 @@ def frame_table(frame: Frame, sets: dict[str, np.ndarray], sets_path: Path, thre
                                 f"but {frame.path} has {len(ids)} cells (a sets file of another mesh?)")
     where = np.full(int(max(ids.max(initial=-1), max((int(e.max(initial=-1)) for e in sets.values()), default=-1))) + 1, -1, np.int64)
     where[ids] = np.arange(len(ids))
-    vol = hex8_volumes(frame.points, frame.cells)
+    vol = frame.volumes
     dmax = np.maximum(frame.cell("damage_tension"), frame.cell("damage_compression"))
     active = frame.cell("region") >= 0 if "region" in frame.cell_data else np.ones(len(ids), bool)
     state = frame.point_data["contact_state"][:, 0] if "contact_state" in frame.point_data else None
@@ -321,7 +327,7 @@ def damage_levels(frame: Frame, concrete: list[int], levels: tuple[float, ...] =
     element damage reaches each level: d_t ≥ D*, d_c ≥ D*, max(d_t, d_c) ≥ D* (m³)."""
     region = frame.cell("region").astype(np.int64)
     keep = np.isin(region, concrete)
-    vol = hex8_volumes(frame.points, frame.cells)[keep]
+    vol = frame.volumes[keep]
     dt, dc = frame.cell("damage_tension")[keep], frame.cell("damage_compression")[keep]
     either = np.maximum(dt, dc)
     return {

@@ -4,7 +4,9 @@
 //! On a distorted, graded block of damaging concrete (several colouring runs per colour,
 //! one-point and fully integrated, with and without Rayleigh damping, single and
 //! subcycled steps) the displacements, internal forces and damage states after a run are
-//! those of the one-phase pass bit for bit, on 1 and 2 threads.
+//! those of the one-phase pass bit for bit, on 1 and 2 threads. The same block checks the
+//! explicit core's in-place material states (`PointStates::set_in_place`) against
+//! buffered ones (old and new buffers, swapped at the end of the step).
 
 use dcfm::element::Integration;
 use dcfm::material::plastic_damage::PlasticDamageParams;
@@ -19,6 +21,8 @@ struct Variant {
     integration: Integration,
     damping: bool,
     subcycled: bool,
+    /// Material states updated in place (the explicit core's way), else buffered.
+    in_place: bool,
 }
 
 /// 16 × 8 × 6 elements (768: three colouring blocks of 256), the first 8 columns 0.5 m
@@ -97,6 +101,10 @@ fn simulation(v: Variant, two_phase: bool) -> Simulation {
     }
     let dt = model.time_step(None, 0.9).unwrap();
     let mut sim = Simulation::new(model, dt, 0.9).unwrap();
+    for g in &mut sim.model.groups {
+        assert!(g.states.is_in_place(), "the explicit core updates in place");
+        g.set_states_in_place(v.in_place);
+    }
     for vel in sim.v.iter_mut() {
         *vel = [4.0 * rand(), 4.0 * rand(), 4.0 * rand()];
     }
@@ -114,7 +122,8 @@ fn simulation(v: Variant, two_phase: bool) -> Simulation {
     sim
 }
 
-/// Displacements, internal forces and element damage fields after 60 steps.
+/// Displacements, element damage fields and internal forces after 60 steps (the forces of
+/// one more pass at the last displacements).
 fn run(v: Variant, two_phase: bool, threads: usize) -> (Vec<u64>, Vec<u64>, Vec<u64>) {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(threads)
@@ -123,8 +132,7 @@ fn run(v: Variant, two_phase: bool, threads: usize) -> (Vec<u64>, Vec<u64>, Vec<
     pool.install(|| {
         let mut sim = simulation(v, two_phase);
         sim.run_steps(60).unwrap();
-        sim.internal_forces();
-        let bits = |a: &[[f64; 3]]| a.iter().flatten().map(|x| x.to_bits()).collect();
+        // The committed states after step 60 (before a pass that, in place, commits).
         let damage: Vec<u64> = sim.model.groups[0]
             .element_damage_fields()
             .unwrap()
@@ -132,40 +140,72 @@ fn run(v: Variant, two_phase: bool, threads: usize) -> (Vec<u64>, Vec<u64>, Vec<
             .flatten()
             .map(|x| x.to_bits())
             .collect();
-        (bits(&sim.u), bits(sim.internal_force()), damage)
+        sim.internal_forces();
+        let bits = |a: &[[f64; 3]]| a.iter().flatten().map(|x| x.to_bits()).collect();
+        (bits(&sim.u), damage, bits(sim.internal_force()))
     })
+}
+
+/// Full and one-point integration, each plain, with Rayleigh damping and subcycled
+/// (subcycling refuses stiffness-proportional damping), states in place.
+fn variants() -> impl Iterator<Item = Variant> {
+    [Integration::Full, Integration::OnePoint]
+        .into_iter()
+        .flat_map(|integration| {
+            [(false, false), (true, false), (false, true)].map(|(damping, subcycled)| Variant {
+                integration,
+                damping,
+                subcycled,
+                in_place: true,
+            })
+        })
+}
+
+/// The reference run of `v`, checked to crack the concrete (some element's D_t > 0.05).
+fn cracking_run(v: Variant, two_phase: bool, threads: usize) -> (Vec<u64>, Vec<u64>, Vec<u64>) {
+    let r = run(v, two_phase, threads);
+    let damaged = sim_damage_max(&r.1);
+    assert!(damaged > 0.05, "{v:?}: largest d_t {damaged}");
+    r
 }
 
 #[test]
 fn two_phase_pass_is_the_one_phase_pass_bit_for_bit() {
-    for integration in [Integration::Full, Integration::OnePoint] {
-        // (Subcycling refuses stiffness-proportional damping.)
-        for (damping, subcycled) in [(false, false), (true, false), (false, true)] {
-            let v = Variant {
-                integration,
-                damping,
-                subcycled,
-            };
-            let one_phase = run(v, false, 1);
-            // The run cracks the concrete: some element's tensile damage D_t > 0.
-            let damaged = sim_damage_max(&one_phase.2);
-            assert!(damaged > 0.05, "{v:?}: largest d_t {damaged}");
-            for threads in [1, 2] {
-                let two_phase = run(v, true, threads);
-                assert!(
-                    one_phase.0 == two_phase.0,
-                    "{v:?}: displacements, {threads} thread(s)"
-                );
-                assert!(
-                    one_phase.1 == two_phase.1,
-                    "{v:?}: forces, {threads} thread(s)"
-                );
-                assert!(
-                    one_phase.2 == two_phase.2,
-                    "{v:?}: damage, {threads} thread(s)"
-                );
-            }
+    for v in variants() {
+        let one_phase = cracking_run(v, false, 1);
+        for threads in [1, 2] {
+            let two_phase = run(v, true, threads);
+            assert!(
+                one_phase.0 == two_phase.0,
+                "{v:?}: displacements, {threads} thread(s)"
+            );
+            assert!(
+                one_phase.1 == two_phase.1,
+                "{v:?}: damage, {threads} thread(s)"
+            );
+            assert!(
+                one_phase.2 == two_phase.2,
+                "{v:?}: forces, {threads} thread(s)"
+            );
         }
+    }
+}
+
+#[test]
+fn in_place_states_step_like_buffered_ones_bit_for_bit() {
+    for v in variants() {
+        let buffered = cracking_run(
+            Variant {
+                in_place: false,
+                ..v
+            },
+            true,
+            2,
+        );
+        let in_place = run(v, true, 2);
+        assert!(buffered.0 == in_place.0, "{v:?}: displacements");
+        assert!(buffered.1 == in_place.1, "{v:?}: damage");
+        assert!(buffered.2 == in_place.2, "{v:?}: forces");
     }
 }
 

@@ -12,7 +12,7 @@ use crate::element::lanes::{self, LaneWork};
 use crate::element::stable_step::characteristic_length;
 use crate::element::Integration;
 use crate::error::{DcfmError, Result};
-use crate::material::{Material, PointContext, PointStates, Voigt};
+use crate::material::{Material, PointContext, PointStates, StateAccess, Voigt, MAX_ELEMENT_STATE};
 use crate::mesh::Mesh;
 
 /// Elements per parallel task (and per partial sum) of [`ElementGroup::damaged_volume`].
@@ -206,7 +206,7 @@ impl ForceSettings<'_> {
 macro_rules! kernel {
     ($g:expr, $u:expr, $v:expr, $beta:expr) => {{
         let stride = $g.states.stride() * $g.integration.points();
-        let (old, new) = $g.states.split();
+        let states = $g.states.access();
         Kernel {
             material: &$g.material,
             conn: &$g.conn,
@@ -214,8 +214,7 @@ macro_rules! kernel {
             geometry: &$g.geometry,
             initial: $g.initial_strain.as_deref(),
             reference: $g.reference.as_deref(),
-            old,
-            new: SharedMut(new.as_mut_ptr()),
+            states,
             stride,
             beta: $beta,
             lanes: $g.lanes,
@@ -341,7 +340,7 @@ impl ElementGroup {
 
     /// Phase one of the two-phase pass ([`add_internal_forces`]): the forces of every
     /// (due) element into [`ElementGroup::element_forces`], element by element in
-    /// parallel, material states to their pending buffer. Nothing for groups without
+    /// parallel, material states to their pending buffer (or in place). Nothing for groups without
     /// the buffers.
     fn compute_element_forces(
         &mut self,
@@ -484,7 +483,8 @@ impl ElementGroup {
     }
 
     /// Commit the material states of the elements evaluated at a subcycled step (`due`);
-    /// the others keep their committed state, which their pending buffer does not hold.
+    /// the others keep their committed state, which their pending buffer does not hold
+    /// (nothing to do in place: the elements not due were not written).
     pub fn commit_due(&mut self, due: Due<'_>) {
         let per = self.states.stride() * self.integration.points();
         if per == 0 {
@@ -881,6 +881,13 @@ impl ElementGroup {
         }
     }
 
+    /// Run the force passes of the group in place or buffered
+    /// ([`PointStates::set_in_place`]).
+    pub fn set_states_in_place(&mut self, in_place: bool) {
+        let per = self.states.stride() * self.integration.points();
+        self.states.set_in_place(in_place, per);
+    }
+
     /// Volume of integration point `gp` of element `le` (one-point: V; full: w det J).
     pub fn integration_point_volume(&self, le: usize, gp: usize) -> f64 {
         self.point_volume(le, gp)
@@ -897,8 +904,8 @@ struct Kernel<'k> {
     geometry: &'k GroupGeometry,
     initial: Option<&'k [Voigt]>,
     reference: Option<&'k [[[f64; 3]; 8]]>,
-    old: &'k [f64],
-    new: SharedMut<f64>,
+    /// The group's state buffers (each element reads and writes its own slice).
+    states: StateAccess,
     /// State values per element.
     stride: usize,
     beta: f64,
@@ -986,7 +993,7 @@ impl Kernel<'_> {
     }
 
     /// Internal force `fe` and damping force `fd` (zero when β = 0) of element `le` over
-    /// a step `dt`, its material states written to the pending buffer.
+    /// a step `dt`, its material states written to the pending buffer (or in place).
     #[inline(always)]
     fn forces(&self, le: usize, dt: f64, fe: &mut [[f64; 3]; 8], fd: &mut [[f64; 3]; 8]) {
         let ue = self.displacements(le);
@@ -995,10 +1002,29 @@ impl Kernel<'_> {
             dt,
         };
         let stride = self.stride;
-        let old_s = &self.old[le * stride..(le + 1) * stride];
-        // SAFETY: each element owns the state slice [le*stride, (le+1)*stride), and
-        // every pass evaluates an element at most once.
-        let new_s = unsafe { std::slice::from_raw_parts_mut(self.new.at(le * stride), stride) };
+        let range = le * stride..(le + 1) * stride;
+        assert!(
+            range.end <= self.states.len,
+            "state slice of element {le} out of bounds"
+        );
+        // SAFETY: each element owns the state slice `range` of both buffers, and every
+        // pass evaluates an element at most once; the in-place pass reads a copy.
+        let new_s =
+            unsafe { std::slice::from_raw_parts_mut(self.states.new.add(range.start), stride) };
+        let mut copy = std::mem::MaybeUninit::<[f64; MAX_ELEMENT_STATE]>::uninit();
+        let old_s: &[f64] = if self.states.in_place {
+            // The committed state of the element, read once into the copy (which
+            // `ElementGroup::set_in_place` checked it fits).
+            assert!(stride <= MAX_ELEMENT_STATE);
+            let p = copy.as_mut_ptr() as *mut f64;
+            // SAFETY: `stride` values copied into the copy, then only those read.
+            unsafe {
+                std::ptr::copy_nonoverlapping(new_s.as_ptr(), p, stride);
+                std::slice::from_raw_parts(p, stride)
+            }
+        } else {
+            unsafe { std::slice::from_raw_parts(self.states.old.add(range.start), stride) }
+        };
         *fe = [[0.0; 3]; 8];
         *fd = [[0.0; 3]; 8];
         let material = self.material;

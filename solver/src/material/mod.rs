@@ -6,7 +6,8 @@
 //! [`Material::update`], so a new model plugs in without touching element code.
 //!
 //! State lives in [`PointStates`]: a fixed number of `f64` per integration point, in an
-//! old and a new buffer swapped at the end of every step.
+//! old and a new buffer swapped at the end of every step, or updated in place by the
+//! explicit core.
 
 pub mod elastic;
 pub mod plastic_damage;
@@ -14,7 +15,7 @@ mod point_states;
 
 pub use elastic::Elastic;
 pub use plastic_damage::PlasticDamage;
-pub use point_states::PointStates;
+pub use point_states::{PointStates, StateAccess, MAX_ELEMENT_STATE};
 
 /// Voigt 6-vector: xx, yy, zz, xy, yz, zx (engineering shear for strains).
 pub type Voigt = [f64; 6];

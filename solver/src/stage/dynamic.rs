@@ -129,6 +129,10 @@ impl Simulation {
     /// Like [`Simulation::new`] without the stability check (for tests that probe it).
     pub fn new_unchecked(mut model: Model, dt: f64) -> Self {
         model.refresh_inverse_mass();
+        // Every force pass is committed: update the material states in place.
+        for g in model.groups.iter_mut() {
+            g.set_states_in_place(true);
+        }
         let n = model.mesh.n_nodes();
         let mut v = vec![[0.0; 3]; n];
         for (nodes, value) in &model.initial_velocity {
@@ -303,7 +307,7 @@ impl Simulation {
 
     /// Internal forces f_int(Uⁿ) (and β K0 V^{n−½}) of every element, colour by colour,
     /// into the internal-force buffer ([`Simulation::internal_force`]). Material states
-    /// are written to their pending buffer, not committed.
+    /// are updated in place (committed by the pass itself).
     pub fn internal_forces(&mut self) {
         let any_beta = self.group_beta.iter().any(|&b| b > 0.0);
         self.f_int
@@ -701,8 +705,9 @@ impl Simulation {
     /// the state that step reached — U^{n+1} and V^{n+½} as they were checked, every node
     /// computed — in place of the last committed one, at step n + 1 and time tⁿ + Δt, so
     /// that the failure frame of a failed run shows the diverging motion
-    /// (docs/outputs.md, "A failed run"). Material states, accelerations and energies stay
-    /// those of step n. The simulation must not step again after this.
+    /// (docs/outputs.md, "A failed run"). The material states are those of the failed
+    /// step's force pass (at Uⁿ, updated in place, as after any step); accelerations and
+    /// energies stay those of step n. The simulation must not step again after this.
     pub fn adopt_failed_step(&mut self) {
         std::mem::swap(&mut self.u, &mut self.u_next);
         std::mem::swap(&mut self.v, &mut self.v_next);

@@ -69,6 +69,9 @@ mod slot {
     pub const LEN: usize = 23;
 }
 
+/// Number of `f64` of state per integration point.
+pub const STATE_LEN: usize = slot::LEN;
+
 /// Margin below zero, relative to c̄_c, of the yield bound under which
 /// [`PlasticDamage::virgin_elastic`] takes a never-yielded point as elastic: far above the
 /// rounding of F (≈ 1e-16 of the stress), far below any physical distance to the surface.

@@ -31,6 +31,11 @@ impl ForceBuffers {
     /// buffers; [`commit_states`] makes them the committed ones. Rate-independent update
     /// (a Duvaut–Lions viscosity is relaxed fully: Δt → ∞).
     pub fn internal_forces(&mut self, model: &mut Model, u: &[[f64; 3]]) {
+        // Trial passes from the committed state: the states buffered (a model handed
+        // back by the explicit core had them in place).
+        for g in model.groups.iter_mut() {
+            g.set_states_in_place(false);
+        }
         self.f_int.iter_mut().for_each(|f| *f = [0.0; 3]);
         let settings = ForceSettings {
             beta: 0.0,

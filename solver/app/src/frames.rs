@@ -190,23 +190,11 @@ impl CompactFrames {
             })
             .unwrap_or_default();
         let mut point_fields = vec![
-            VtuField {
-                name: "displacement",
-                components: 3,
-                values: &u,
-            },
-            VtuField {
-                name: "velocity",
-                components: 3,
-                values: &v,
-            },
+            VtuField::new("displacement", 3, &u),
+            VtuField::new("velocity", 3, &v),
         ];
         for (name, k, values) in &contact {
-            point_fields.push(VtuField {
-                name,
-                components: *k,
-                values,
-            });
+            point_fields.push(VtuField::new(name, *k, values));
         }
         let pick = |k: usize| -> Vec<f64> {
             s.elements
@@ -225,36 +213,12 @@ impl CompactFrames {
             &s.cells,
             &point_fields,
             &[
-                VtuField {
-                    name: "damage",
-                    components: 1,
-                    values: &d,
-                },
-                VtuField {
-                    name: "damage_tension",
-                    components: 1,
-                    values: &dt,
-                },
-                VtuField {
-                    name: "damage_compression",
-                    components: 1,
-                    values: &dc,
-                },
-                VtuField {
-                    name: "stress",
-                    components: 6,
-                    values: &stress,
-                },
-                VtuField {
-                    name: "region",
-                    components: 1,
-                    values: &self.region,
-                },
-                VtuField {
-                    name: "element_id",
-                    components: 1,
-                    values: &ids,
-                },
+                VtuField::new("damage", 1, &d),
+                VtuField::new("damage_tension", 1, &dt),
+                VtuField::new("damage_compression", 1, &dc),
+                VtuField::new("stress", 6, &stress),
+                VtuField::new("region", 1, &self.region),
+                VtuField::new("element_id", 1, &ids),
             ],
             &[VtuStrings {
                 name: "region_names",
@@ -274,21 +238,9 @@ impl CompactFrames {
                 &lines.lines,
                 &[],
                 &[
-                    VtuField {
-                        name: "axial_force",
-                        components: 1,
-                        values: &lines.force,
-                    },
-                    VtuField {
-                        name: "plastic_strain",
-                        components: 1,
-                        values: &lines.plastic_strain,
-                    },
-                    VtuField {
-                        name: "bar",
-                        components: 1,
-                        values: &lines.bar,
-                    },
+                    VtuField::new("axial_force", 1, &lines.force),
+                    VtuField::new("plastic_strain", 1, &lines.plastic_strain),
+                    VtuField::new("bar", 1, &lines.bar),
                 ],
             )?;
             apvd.add(sim.time, &name)?;

@@ -342,17 +342,23 @@ fn write_frame(
     first: bool,
     last: bool,
 ) -> Result<()> {
+    let encoding = whole_mesh_encoding(frames.as_deref());
     match frames {
-        None => write_state_vtu(sim, out, pvd, WholeMeshEncoding::Base64),
+        None => write_state_vtu(sim, out, pvd, encoding),
         Some(f) => {
             f.write(sim, out, pvd, first, last)?;
             if f.full_due(sim.step, first, last) {
-                let encoding = f.full_encoding;
                 write_state_vtu(sim, out, f.full_collection(), encoding)?;
             }
             Ok(())
         }
     }
+}
+
+/// How the whole-mesh frames are written: as `[output.frames]` says, else (every frame
+/// the whole mesh) base64 (docs/outputs.md).
+fn whole_mesh_encoding(frames: Option<&crate::frames::CompactFrames>) -> WholeMeshEncoding {
+    frames.map_or(WholeMeshEncoding::Base64, |f| f.full_encoding)
 }
 
 /// Write one VTU of the current state and add it to the collection.
@@ -426,85 +432,25 @@ fn write_state_vtu_named(
         .map(|c| c.node_fields(model.mesh.n_nodes()))
         .unwrap_or_default();
     let mut point_fields = vec![
-        VtuField {
-            name: "displacement",
-            components: 3,
-            values: &u,
-        },
-        VtuField {
-            name: "velocity",
-            components: 3,
-            values: &v,
-        },
-        VtuField {
-            name: "acceleration",
-            components: 3,
-            values: &a,
-        },
-        VtuField {
-            name: "active",
-            components: 1,
-            values: &point_active,
-        },
+        VtuField::new("displacement", 3, &u),
+        VtuField::new("velocity", 3, &v),
+        VtuField::new("acceleration", 3, &a),
+        VtuField::new("active", 1, &point_active),
     ];
     for (name, components, values) in &contact_fields {
-        point_fields.push(VtuField {
-            name,
-            components: *components,
-            values,
-        });
+        point_fields.push(VtuField::new(name, *components, values));
     }
     let cell_fields = [
-        VtuField {
-            name: "stress",
-            components: 6,
-            values: &stress,
-        },
-        VtuField {
-            name: "strain",
-            components: 6,
-            values: &strain,
-        },
-        VtuField {
-            name: "damage",
-            components: 1,
-            values: &d,
-        },
-        VtuField {
-            name: "damage_tension",
-            components: 1,
-            values: &dt,
-        },
-        VtuField {
-            name: "damage_compression",
-            components: 1,
-            values: &dc,
-        },
-        VtuField {
-            name: "kappa_tension",
-            components: 1,
-            values: &kt,
-        },
-        VtuField {
-            name: "kappa_compression",
-            components: 1,
-            values: &kc,
-        },
-        VtuField {
-            name: "plastic_strain",
-            components: 6,
-            values: &ep,
-        },
-        VtuField {
-            name: "region",
-            components: 1,
-            values: &region,
-        },
-        VtuField {
-            name: "active",
-            components: 1,
-            values: &cell_active,
-        },
+        VtuField::new("stress", 6, &stress),
+        VtuField::new("strain", 6, &strain),
+        VtuField::new("damage", 1, &d),
+        VtuField::new("damage_tension", 1, &dt),
+        VtuField::new("damage_compression", 1, &dc),
+        VtuField::new("kappa_tension", 1, &kt),
+        VtuField::new("kappa_compression", 1, &kc),
+        VtuField::new("plastic_strain", 6, &ep),
+        VtuField::new("region", 1, &region),
+        VtuField::new("active", 1, &cell_active),
     ];
     let field_data = [VtuStrings {
         name: "region_names",
@@ -944,9 +890,7 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
             if let Err(h) = hist.flush() {
                 text += &format!("; histories.csv could not be completed: {h}");
             }
-            let encoding = frames
-                .as_ref()
-                .map_or(WholeMeshEncoding::Base64, |f| f.full_encoding);
+            let encoding = whole_mesh_encoding(frames.as_ref());
             let frame = match write_failure_frame(&mut sim, e, out, &mut pvd, encoding) {
                 Ok(name) => Some(name),
                 Err(f) => {

@@ -186,48 +186,16 @@ fn write_static_vtu(model: &Model, result: &StaticResult, path: &Path) -> Result
         &model.mesh.coords,
         &cells,
         &[
-            VtuField {
-                name: "displacement",
-                components: 3,
-                values: &u,
-            },
-            VtuField {
-                name: "displacement_since_in_situ",
-                components: 3,
-                values: &du,
-            },
-            VtuField {
-                name: "reaction",
-                components: 3,
-                values: &reaction,
-            },
+            VtuField::new("displacement", 3, &u),
+            VtuField::new("displacement_since_in_situ", 3, &du),
+            VtuField::new("reaction", 3, &reaction),
         ],
         &[
-            VtuField {
-                name: "stress",
-                components: 6,
-                values: &stress,
-            },
-            VtuField {
-                name: "strain",
-                components: 6,
-                values: &strain,
-            },
-            VtuField {
-                name: "damage",
-                components: 1,
-                values: &damage,
-            },
-            VtuField {
-                name: "region",
-                components: 1,
-                values: &region,
-            },
-            VtuField {
-                name: "element",
-                components: 1,
-                values: &ids,
-            },
+            VtuField::new("stress", 6, &stress),
+            VtuField::new("strain", 6, &strain),
+            VtuField::new("damage", 1, &damage),
+            VtuField::new("region", 1, &region),
+            VtuField::new("element", 1, &ids),
         ],
         &[VtuStrings {
             name: "region_names",

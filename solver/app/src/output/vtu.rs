@@ -33,6 +33,17 @@ pub struct VtuField<'a> {
     pub values: &'a [f64],
 }
 
+impl<'a> VtuField<'a> {
+    /// Field `name` of `components` numbers per point or cell.
+    pub fn new(name: &'a str, components: usize, values: &'a [f64]) -> Self {
+        Self {
+            name,
+            components,
+            values,
+        }
+    }
+}
+
 /// Integer width of the connectivity and offsets arrays.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum IndexType {
@@ -572,28 +583,12 @@ mod tests {
             &coords,
             &cells,
             &[
-                VtuField {
-                    name: "displacement",
-                    components: 3,
-                    values: &u,
-                },
-                VtuField {
-                    name: "pore<&>",
-                    components: 1,
-                    values: &p,
-                },
+                VtuField::new("displacement", 3, &u),
+                VtuField::new("pore<&>", 1, &p),
             ],
             &[
-                VtuField {
-                    name: "damage",
-                    components: 1,
-                    values: &damage,
-                },
-                VtuField {
-                    name: "stress",
-                    components: 6,
-                    values: &stress,
-                },
+                VtuField::new("damage", 1, &damage),
+                VtuField::new("stress", 6, &stress),
             ],
             &[VtuStrings {
                 name: "region_names",
@@ -683,11 +678,7 @@ mod tests {
             &path,
             &coords,
             &cells,
-            &[VtuField {
-                name: "velocity",
-                components: 3,
-                values: &short,
-            }],
+            &[VtuField::new("velocity", 3, &short)],
             &[],
             &[],
         )
@@ -790,11 +781,7 @@ mod line_tests {
             &points,
             &lines,
             &[],
-            &[VtuField {
-                name: "axial_force",
-                components: 1,
-                values: &force,
-            }],
+            &[VtuField::new("axial_force", 1, &force)],
         )
         .unwrap();
         let vtk = vtkio::Vtk::import(&path).expect("vtkio reads the file");

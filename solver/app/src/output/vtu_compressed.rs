@@ -326,16 +326,8 @@ mod tests {
             Precision::Float32,
             &coords,
             &cells,
-            &[VtuField {
-                name: "u",
-                components: 3,
-                values: &u,
-            }],
-            &[VtuField {
-                name: "damage",
-                components: 1,
-                values: &d,
-            }],
+            &[VtuField::new("u", 3, &u)],
+            &[VtuField::new("damage", 1, &d)],
             &[VtuStrings {
                 name: "region_names",
                 values: &names,
@@ -379,11 +371,7 @@ mod tests {
             &coords,
             &cells,
             &[],
-            &[VtuField {
-                name: "damage",
-                components: 1,
-                values: &u,
-            }],
+            &[VtuField::new("damage", 1, &u)],
             &[],
         )
         .unwrap_err();
@@ -417,16 +405,8 @@ mod tests {
             Precision::Float64,
             &coords,
             &cells,
-            &[VtuField {
-                name: "displacement",
-                components: 3,
-                values: &u,
-            }],
-            &[VtuField {
-                name: "stress",
-                components: 6,
-                values: &stress,
-            }],
+            &[VtuField::new("displacement", 3, &u)],
+            &[VtuField::new("stress", 6, &stress)],
             &[],
         )
         .unwrap();

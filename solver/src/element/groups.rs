@@ -205,7 +205,7 @@ impl ForceSettings<'_> {
 /// so that it borrows the group's fields one by one, beside its colouring runs).
 macro_rules! kernel {
     ($g:expr, $u:expr, $v:expr, $beta:expr) => {{
-        let stride = $g.states.stride() * $g.integration.points();
+        let stride = $g.state_values_per_element();
         let states = $g.states.access();
         Kernel {
             material: &$g.material,
@@ -340,8 +340,8 @@ impl ElementGroup {
 
     /// Phase one of the two-phase pass ([`add_internal_forces`]): the forces of every
     /// (due) element into [`ElementGroup::element_forces`], element by element in
-    /// parallel, material states to their pending buffer (or in place). Nothing for groups without
-    /// the buffers.
+    /// parallel, material states to their pending buffer (or in place). Nothing for
+    /// groups without the buffers.
     fn compute_element_forces(
         &mut self,
         u: &[[f64; 3]],
@@ -486,7 +486,7 @@ impl ElementGroup {
     /// the others keep their committed state, which their pending buffer does not hold
     /// (nothing to do in place: the elements not due were not written).
     pub fn commit_due(&mut self, due: Due<'_>) {
-        let per = self.states.stride() * self.integration.points();
+        let per = self.state_values_per_element();
         if per == 0 {
             return;
         }
@@ -884,8 +884,13 @@ impl ElementGroup {
     /// Run the force passes of the group in place or buffered
     /// ([`PointStates::set_in_place`]).
     pub fn set_states_in_place(&mut self, in_place: bool) {
-        let per = self.states.stride() * self.integration.points();
+        let per = self.state_values_per_element();
         self.states.set_in_place(in_place, per);
+    }
+
+    /// Material state values of one element (all its integration points).
+    fn state_values_per_element(&self) -> usize {
+        self.states.stride() * self.integration.points()
     }
 
     /// Volume of integration point `gp` of element `le` (one-point: V; full: w det J).
@@ -1014,7 +1019,7 @@ impl Kernel<'_> {
         let mut copy = std::mem::MaybeUninit::<[f64; MAX_ELEMENT_STATE]>::uninit();
         let old_s: &[f64] = if self.states.in_place {
             // The committed state of the element, read once into the copy (which
-            // `ElementGroup::set_in_place` checked it fits).
+            // `ElementGroup::set_states_in_place` checked it fits).
             assert!(stride <= MAX_ELEMENT_STATE);
             let p = copy.as_mut_ptr() as *mut f64;
             // SAFETY: `stride` values copied into the copy, then only those read.

@@ -13,7 +13,9 @@ Reads (paths relative to the repository root, or given on the command line):
 - results/crosscheck/performance.json — the timings of the performance table;
 - benchmarks/history.jsonl — throughput over commits;
 - reports/recorded/NAME/ — recorded runs kept in the repository (record.json with the
-  provenance, and the files of a Yingxiuwan run folder), one section each;
+  provenance, and the files of a Yingxiuwan run folder), one section each; a recorded
+  anti-seismic measure (record.json's "measure_of" names its base's folder, "measure"
+  its label) is shown in its base's section, beside it;
 - results/yingxiuwan/ — the Yingxiuwan case's run (summary.json, histories.csv,
   checks.json, and post/post.json with its maps from reports/yingxiuwan_post.py), when
   that case exists.
@@ -211,8 +213,22 @@ def read_inputs(root: Path) -> Inputs:
     inp.yingxiuwan = read_yingxiuwan(root)
     rec = root / "reports/recorded"
     if rec.is_dir():
-        for d in sorted(p for p in rec.iterdir() if (p / "record.json").exists()):
-            inp.recorded.append(read_recorded(d))
+        runs = [read_recorded(d) for d in sorted(p for p in rec.iterdir() if (p / "record.json").exists())]
+        by_name = {r["anchor"].removeprefix("recorded-"): r for r in runs}
+        for r in runs:
+            base = r["record"].get("measure_of")
+            if base is None:
+                inp.recorded.append(r)
+                continue
+            # A recorded measure (record.json: "measure_of", the base's folder, and
+            # "measure", its label) is shown beside its recorded base, not on its own.
+            where = rec / r["anchor"].removeprefix("recorded-") / "record.json"
+            if base not in by_name or by_name[base]["record"].get("measure_of") is not None:
+                raise ReportError(f"{where}: 'measure_of': {base!r} is not a recorded base run in {rec}")
+            label = r["record"].get("measure")
+            if not isinstance(label, str) or not label:
+                raise ReportError(f"{where}: a recorded measure needs 'measure', its label (a text)")
+            by_name[base]["measures"][label] = r
     return inp
 
 
@@ -790,17 +806,33 @@ def _concrete_damage(run: dict[str, Any]) -> tuple[float | None, float | None, f
     return lin[0] + inn[0], lin[-1] + inn[-1], lin[-1], inn[-1]
 
 
+def _concrete_history(run: dict[str, Any]) -> tuple[list[float], list[float]] | None:
+    """Time and concrete damaged volume (lining + inner structure) of every history row."""
+    cols = run.get("columns") or {}
+    t, lin, inn = cols.get("time"), cols.get("damaged_volume_total_lining"), cols.get("damaged_volume_total_inner")
+    if not t or not lin or not inn:
+        return None
+    return t, [a + b for a, b in zip(lin, inn)]
+
+
 def measures_section(rep: Report, y: dict[str, Any]) -> None:
     """The anti-seismic measures of paper §6 (generator `--measure`), each run like the
     base case: damaged volumes, physics checks and survey side by side, and the maps at
     the last frame."""
     runs = {"base case": y, **{m.replace("_", " "): r for m, r in y["measures"].items()}}
-    rep.h("<h3>Anti-seismic measures (paper §6) side by side</h3><p>Each measure is the base case with one change "
-          "(`dcfm mesh yingxiuwan --measure NAME`, docs/yingxiuwan.md): a reinforced (stiffer) rock zone around the "
-          "cavern, anchorage of the upper structure, a soft isolation layer between the lower structure and the rock; "
-          "run over the same record and time. The paper shows the measures' damaged areas as smaller (its Figs. 15–16) "
-          "without a volume.</p>")
+    rep.h("<h3>Anti-seismic measures (paper §6) side by side</h3><p>Each variant is the base case with the measures it "
+          "names (`dcfm mesh yingxiuwan --measure NAME[,NAME…]`, or `all`; docs/yingxiuwan.md): a reinforced (stiffer) rock "
+          "zone around the cavern, anchorage of the upper structure, a soft isolation layer between the lower structure "
+          "and the rock; run over the same record and time. The paper shows the damaged areas after adopting the "
+          "measures as smaller (its Figs. 15–16) without a volume.</p>")
     rep.m("### Anti-seismic measures (paper §6) side by side\n")
+    for name, r in runs.items():
+        record = r.get("record")
+        if record is not None and r is not y:
+            line = (f"{name}: recorded run, not rerun by this report: commit {record['commit']}, {record['date']}, "
+                    f"{record['threads']} threads on {record['machine']}. {record['note']} How it was made: {record['command']}.")
+            rep.h(f'<p class="meta">{esc(line)}</p>')
+            rep.m(line + "\n")
     base_end = _concrete_damage(y)[1]
     rows, md = [], []
     for name, r in runs.items():
@@ -820,6 +852,18 @@ def measures_section(rep: Report, y: dict[str, Any]) -> None:
     rep.h('<div class="scroll"><table class="rows"><thead><tr>' + "".join(f"<th>{esc(h)}</th>" for h in head)
           + f"</tr></thead><tbody>{''.join(rows)}</tbody></table></div>")
     rep.m("| " + " | ".join(head) + " |\n|" + "---|" * len(head) + "\n" + "\n".join(md) + "\n")
+    curves = {name: _concrete_history(r) for name, r in runs.items()}
+    curves = {name: c for name, c in curves.items() if c is not None}
+    if len(curves) > 1:
+        fig, ax = plt.subplots(figsize=(7.0, 3.4))
+        for name, (t, v) in curves.items():
+            ax.plot(t, v, label=name)
+        ax.set_xlabel("time (s)")
+        ax.set_ylabel("concrete damaged volume (m³)")
+        ax.grid(True, alpha=0.3)
+        ax.legend(fontsize=8)
+        rep.h(f'<figure><img alt="damaged volume of each variant" src="data:image/png;base64,{_png(fig)}"><figcaption>'
+              "Concrete damaged volume (lining + inner structure, histories) of the base case and of each variant</figcaption></figure>")
     maps = []
     for name, r in runs.items():
         images = (r.get("post") or {}).get("images") or {}

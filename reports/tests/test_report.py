@@ -199,6 +199,44 @@ def test_recorded_runs_get_their_own_section_with_provenance(tmp_path):
         generate.read_inputs(tmp_path)
 
 
+def test_recorded_measures_are_shown_beside_their_recorded_base(tmp_path):
+    import shutil
+
+    write_inputs(tmp_path)
+    src = ROOT / "reports/recorded/yingxiuwan_ci_60s"
+    rec = tmp_path / "reports/recorded"
+    shutil.copytree(src, rec / "yingxiuwan_ci_60s")
+    measure = rec / "yingxiuwan_ci_60s_measure"
+    shutil.copytree(src, measure)
+    record = json.loads((src / "record.json").read_text())
+    record.update(title="A measure", commit="abc9999", measure_of="yingxiuwan_ci_60s", measure="every measure")
+    (measure / "record.json").write_text(json.dumps(record))
+    # Half the damage of the base at the last row: the table says -50 %.
+    lines = (src / "histories.csv").read_text().splitlines()
+    header = lines[0].split(",")
+    cols = [header.index("damaged_volume_total_lining"), header.index("damaged_volume_total_inner")]
+    rows = []
+    for line in lines[1:]:
+        v = line.split(",")
+        for c in cols:
+            v[c] = repr(float(v[c]) / 2)
+        rows.append(",".join(v))
+    (measure / "histories.csv").write_text("\n".join([lines[0], *rows]) + "\n")
+    page, md, _ = generate.build(generate.read_inputs(tmp_path))
+    # No section of its own; a row, its provenance and its maps in the base's section.
+    assert 'id="recorded-yingxiuwan_ci_60s_measure"' not in page and "## A measure" not in md
+    assert "Anti-seismic measures (paper §6) side by side" in md
+    assert "every measure: recorded run, not rerun by this report: commit abc9999" in md
+    row = next(line for line in md.splitlines() if line.startswith("| every measure |"))
+    assert "| -50.0 % |" in row
+    assert "every measure: damage lining 60 s" in md
+    # A measure whose base is not recorded is refused by name.
+    record["measure_of"] = "no_such_run"
+    (measure / "record.json").write_text(json.dumps(record))
+    with pytest.raises(generate.ReportError, match="'measure_of': 'no_such_run'"):
+        generate.read_inputs(tmp_path)
+
+
 def test_measures_are_shown_beside_the_base_case(tmp_path):
     write_inputs(tmp_path)
     hist = "time,damaged_volume_total_lining,damaged_volume_total_inner\n0,10,0\n3,100,100\n"

@@ -215,14 +215,14 @@ def read_inputs(root: Path) -> Inputs:
     if rec.is_dir():
         runs = [read_recorded(d) for d in sorted(p for p in rec.iterdir() if (p / "record.json").exists())]
         by_name = {r["anchor"].removeprefix("recorded-"): r for r in runs}
-        for r in runs:
+        for name, r in by_name.items():
             base = r["record"].get("measure_of")
             if base is None:
                 inp.recorded.append(r)
                 continue
             # A recorded measure (record.json: "measure_of", the base's folder, and
             # "measure", its label) is shown beside its recorded base, not on its own.
-            where = rec / r["anchor"].removeprefix("recorded-") / "record.json"
+            where = rec / name / "record.json"
             if base not in by_name or by_name[base]["record"].get("measure_of") is not None:
                 raise ReportError(f"{where}: 'measure_of': {base!r} is not a recorded base run in {rec}")
             label = r["record"].get("measure")
@@ -796,16 +796,6 @@ def yingxiuwan_section(rep: Report, y: dict[str, Any]) -> None:
     rep.h("</section>")
 
 
-def _concrete_damage(run: dict[str, Any]) -> tuple[float | None, float | None, float | None, float | None]:
-    """Concrete damaged volume (lining + inner structure, histories) at the first and the
-    last row, and the lining's and the inner structure's at the last row."""
-    cols = run.get("columns") or {}
-    lin, inn = cols.get("damaged_volume_total_lining"), cols.get("damaged_volume_total_inner")
-    if not lin or not inn:
-        return None, None, None, None
-    return lin[0] + inn[0], lin[-1] + inn[-1], lin[-1], inn[-1]
-
-
 def _concrete_history(run: dict[str, Any]) -> tuple[list[float], list[float]] | None:
     """Time and concrete damaged volume (lining + inner structure) of every history row."""
     cols = run.get("columns") or {}
@@ -813,6 +803,16 @@ def _concrete_history(run: dict[str, Any]) -> tuple[list[float], list[float]] | 
     if not t or not lin or not inn:
         return None
     return t, [a + b for a, b in zip(lin, inn)]
+
+
+def _concrete_damage(run: dict[str, Any]) -> tuple[float | None, float | None, float | None, float | None]:
+    """Concrete damaged volume (lining + inner structure, histories) at the first and the
+    last row, and the lining's and the inner structure's at the last row."""
+    history = _concrete_history(run)
+    if history is None:
+        return None, None, None, None
+    cols = run["columns"]
+    return history[1][0], history[1][-1], cols["damaged_volume_total_lining"][-1], cols["damaged_volume_total_inner"][-1]
 
 
 def measures_section(rep: Report, y: dict[str, Any]) -> None:

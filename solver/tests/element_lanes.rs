@@ -5,6 +5,8 @@
 //! material states after a run of steps are the scalar kernel's bit for bit, on 1 and 2
 //! threads.
 
+mod common;
+
 use dcfm::element::Integration;
 use dcfm::material::plastic_damage::PlasticDamageParams;
 use dcfm::material::{Elastic, Material, PlasticDamage};
@@ -18,13 +20,8 @@ fn simulation(lanes: bool, damping: bool, reference: bool, plastic: bool) -> Sim
     let mut mesh = BoxMeshSpec::single("rock", [0.0; 3], [7.0, 5.0, 3.0], [7, 5, 3])
         .build("lanes test")
         .unwrap();
-    let mut seed = 0x1234_5678_9abc_def1u64;
-    let mut rand = move || {
-        seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-    };
+    let mut lcg = common::Lcg(0x1234_5678_9abc_def1u64);
+    let mut rand = move || lcg.centred();
     for x in mesh.coords.iter_mut() {
         let inside = (0..3).all(|d| x[d] > 1e-9 && x[d] < [7.0, 5.0, 3.0][d] - 1e-9);
         if inside {
@@ -101,7 +98,7 @@ fn run(lanes: bool, damping: bool, reference: bool, plastic: bool, threads: usiz
             .model
             .groups
             .iter()
-            .flat_map(|g| g.states.current().to_vec())
+            .flat_map(|g| g.states().current().to_vec())
             .collect();
         (sim.u.clone(), sim.internal_force().to_vec(), states)
     })
@@ -148,7 +145,7 @@ fn the_plastic_case_cracks() {
     let g = &sim.model.groups[0];
     let stride = g.material.state_len();
     let (mut damaged, mut intact) = (0, 0);
-    for state in g.states.current().chunks_exact(stride) {
+    for state in g.states().current().chunks_exact(stride) {
         match g.material.tensile_and_compressive_damage(state) {
             Some((dt, dc)) if dt > 0.0 || dc > 0.0 => damaged += 1,
             _ => intact += 1,

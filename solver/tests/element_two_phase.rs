@@ -8,9 +8,10 @@
 //! explicit core's in-place material states (`PointStates::set_in_place`) against
 //! buffered ones (old and new buffers, swapped at the end of the step).
 
+mod common;
+
 use dcfm::element::Integration;
-use dcfm::material::plastic_damage::PlasticDamageParams;
-use dcfm::material::{Elastic, Material, PlasticDamage};
+use dcfm::material::Elastic;
 use dcfm::mesh::BoxMeshSpec;
 use dcfm::model::{Model, Rayleigh, RegionSetup};
 use dcfm::stage::Simulation;
@@ -39,13 +40,8 @@ fn simulation(v: Variant, two_phase: bool) -> Simulation {
     )
     .build("two-phase test")
     .unwrap();
-    let mut seed = 0x0ddc_0ffe_e15b_ad5eu64;
-    let mut rand = move || {
-        seed = seed
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
-    };
+    let mut lcg = common::Lcg(0x0ddc_0ffe_e15b_ad5eu64);
+    let mut rand = move || lcg.centred();
     let grade = |i: f64| {
         if i <= 8.0 {
             0.5 * i
@@ -67,14 +63,7 @@ fn simulation(v: Variant, two_phase: bool) -> Simulation {
         }
     }
     let elastic = Elastic::new("concrete", 25e9, 0.17, 2450.0).unwrap();
-    let material = Material::PlasticDamage(Box::new(
-        PlasticDamage::new(
-            "concrete",
-            elastic,
-            &PlasticDamageParams::from_strengths(2.9e6, 13e6, 24.1e6, 200.0, 1e4),
-        )
-        .unwrap(),
-    ));
+    let material = common::damaging_concrete(elastic);
     let setup = RegionSetup {
         region: "concrete".to_string(),
         material,
@@ -102,7 +91,10 @@ fn simulation(v: Variant, two_phase: bool) -> Simulation {
     let dt = model.time_step(None, 0.9).unwrap();
     let mut sim = Simulation::new(model, dt, 0.9).unwrap();
     for g in &mut sim.model.groups {
-        assert!(g.states.is_in_place(), "the explicit core updates in place");
+        assert!(
+            g.states().is_in_place(),
+            "the explicit core updates in place"
+        );
         g.set_states_in_place(v.in_place);
     }
     for vel in sim.v.iter_mut() {

@@ -8,6 +8,8 @@
 //!     does not grow (stability);
 //! results are bit-identical on 1 and 2 threads; unhandled models are refused by name.
 
+mod common;
+
 use dcfm::element::Integration;
 use dcfm::material::{Elastic, Material};
 use dcfm::mesh::BoxMeshSpec;
@@ -259,17 +261,8 @@ fn graded_box_of(material: Material, speed: f64, max_level: Option<u8>) -> Simul
 /// swap) would bring back its state of an earlier evaluation and fail this.
 #[test]
 fn plastic_damage_states_commit_at_evaluations_only() {
-    use dcfm::material::plastic_damage::PlasticDamageParams;
-    use dcfm::material::PlasticDamage;
     let elastic = Elastic::new("concrete", YOUNG, 0.25, DENSITY).unwrap();
-    let material = Material::PlasticDamage(Box::new(
-        PlasticDamage::new(
-            "concrete",
-            elastic,
-            &PlasticDamageParams::from_strengths(2.9e6, 13e6, 24.1e6, 200.0, 1e4),
-        )
-        .unwrap(),
-    ));
+    let material = common::damaging_concrete(elastic);
     let mut sim = graded_box_of(material, 4.0, Some(3));
     let s = sim.subcycling().unwrap().clone();
     assert!(s.elements_per_level[2] > 0, "{s:?}");

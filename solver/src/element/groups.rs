@@ -5,6 +5,7 @@
 use rayon::prelude::*;
 
 use crate::element::colouring::BLOCK;
+use crate::element::damage_marks::DamageMarks;
 use crate::element::hex8_full::{self, FullGeometry};
 use crate::element::hex8_full_lanes;
 use crate::element::hex8_uniform::{self, UniformGeometry};
@@ -59,8 +60,13 @@ pub struct ElementGroup {
     blocks: Vec<std::ops::Range<usize>>,
     /// Range of `blocks` of each colour.
     colour_blocks: Vec<std::ops::Range<usize>>,
-    /// Integration-point state (`integration.points()` points per element).
-    pub states: PointStates,
+    /// Integration-point state (`integration.points()` points per element); read through
+    /// [`ElementGroup::states`], changed by the force passes and the methods that keep
+    /// [`ElementGroup::damage_marks`] true.
+    states: PointStates,
+    /// The elements that may hold damage ([`DamageMarks`]): marked by the force passes,
+    /// recomputed whenever the states change otherwise.
+    damage_marks: DamageMarks,
     /// Initial strain ε₀ of every integration point (in-situ stress σ₀ = E₀ : ε₀), added to
     /// the strain of the displacements before the material update; `None` (no cost) for
     /// groups without initial stress (`docs/static_stage.md`).
@@ -134,6 +140,19 @@ pub fn add_internal_forces<'a>(
             g.add_colour_forces(c, u, v, settings(k), f_int, f_damp);
         }
     }
+}
+
+/// The marks of `n` elements of `np` points each whose committed states are `states`: an
+/// element is marked when one of its points may hold damage.
+fn marks_of(material: &Material, states: &PointStates, np: usize, n: usize) -> DamageMarks {
+    let stride = states.stride();
+    let current = states.current();
+    DamageMarks::from_fn(n, |le| {
+        stride > 0
+            && current[le * np * stride..(le + 1) * np * stride]
+                .chunks_exact(stride)
+                .any(|p| material.may_hold_damage(p))
+    })
 }
 
 /// Raw pointer made shareable across threads; every use writes disjoint indices
@@ -216,6 +235,8 @@ macro_rules! kernel {
             reference: $g.reference.as_deref(),
             states,
             stride,
+            point_stride: $g.states.stride(),
+            marks: &$g.damage_marks,
             beta: $beta,
             lanes: $g.lanes,
             u: $u,
@@ -289,6 +310,7 @@ impl ElementGroup {
         let n_points = elements.len() * integration.points();
         let states = PointStates::new(stride, n_points, |_, s| material.init_state(s));
         let element_forces = ElementForces::default_for(&material, elements.len());
+        let damage_marks = marks_of(&material, &states, integration.points(), elements.len());
         Ok(Self {
             region,
             name: mesh.region_names[region].clone(),
@@ -303,6 +325,7 @@ impl ElementGroup {
             blocks,
             colour_blocks,
             states,
+            damage_marks,
             initial_strain: None,
             reference: None,
             lanes: true,
@@ -592,6 +615,33 @@ impl ElementGroup {
     /// Elements in parallel, in fixed chunks whose partial sums are added in chunk order:
     /// the same bits on any number of threads.
     pub fn damaged_volume(&self, threshold: f64, per_element: bool) -> [f64; 3] {
+        if threshold > 0.0 {
+            // Only the marked elements can reach a threshold above zero.
+            self.damaged_volume_of(threshold, per_element, |le| self.damage_marks.is_marked(le))
+        } else {
+            self.damaged_volume_of(threshold, per_element, |_| true)
+        }
+    }
+
+    /// [`ElementGroup::damaged_volume`] visiting every element: the reference the marked
+    /// scan is tested against.
+    pub fn damaged_volume_scanning_all(&self, threshold: f64, per_element: bool) -> [f64; 3] {
+        self.damaged_volume_of(threshold, per_element, |_| true)
+    }
+
+    /// Number of elements marked as possibly damaged ([`DamageMarks`]).
+    pub fn marked_elements(&self) -> usize {
+        self.damage_marks.count()
+    }
+
+    /// The damaged volume over the elements with `visit(le)`, in chunks of
+    /// [`DAMAGE_CHUNK`] elements summed in order (the same sums on any thread count).
+    fn damaged_volume_of(
+        &self,
+        threshold: f64,
+        per_element: bool,
+        visit: impl Fn(usize) -> bool + Sync,
+    ) -> [f64; 3] {
         if !self.material.has_damage() {
             return [0.0; 3];
         }
@@ -616,6 +666,9 @@ impl ElementGroup {
             .map(|c| {
                 let mut v = [0.0; 3];
                 for le in c * DAMAGE_CHUNK..((c + 1) * DAMAGE_CHUNK).min(self.len()) {
+                    if !visit(le) {
+                        continue;
+                    }
                     let (mut et, mut ec) = (0.0, 0.0);
                     for gp in 0..np {
                         let p = le * np + gp;
@@ -732,6 +785,7 @@ impl ElementGroup {
             let q = kept[k] * np + gp;
             s.copy_from_slice(&current[q * stride..(q + 1) * stride]);
         });
+        let damage_marks = marks_of(&self.material, &states, np, kept.len());
         ElementGroup {
             region: self.region,
             name: self.name.clone(),
@@ -745,6 +799,7 @@ impl ElementGroup {
             blocks,
             colour_blocks,
             states,
+            damage_marks,
             initial_strain: self.initial_strain.as_ref().map(|e0| {
                 kept.iter()
                     .flat_map(|&le| e0[le * np..(le + 1) * np].iter().copied())
@@ -795,7 +850,7 @@ impl ElementGroup {
             any_initial |= old.initial_strain.is_some();
             any_reference |= old.reference.is_some();
         }
-        self.states.restore(&values);
+        self.restore_states(&values);
         if any_initial {
             let n = self.len() * np;
             let e0 = self.initial_strain.get_or_insert_with(|| vec![[0.0; 6]; n]);
@@ -866,7 +921,7 @@ impl ElementGroup {
             for (p, s) in values.chunks_exact_mut(stride).enumerate() {
                 self.material.prime_strain(s, &e0[p]);
             }
-            self.states.restore(&values);
+            self.restore_states(&values);
         }
         self.initial_strain = Some(e0);
     }
@@ -879,6 +934,40 @@ impl ElementGroup {
             GroupGeometry::Uniform(g) => uniform_stiffness(&g[le], self.material.elastic()),
             GroupGeometry::Full(g) => full_stiffness(&g[le], self.material.elastic()),
         }
+    }
+
+    /// The integration-point states.
+    pub fn states(&self) -> &PointStates {
+        &self.states
+    }
+
+    /// End of step: the last pass's states become the committed ones
+    /// ([`PointStates::commit`]).
+    pub fn commit_states(&mut self) {
+        self.states.commit();
+    }
+
+    /// Replace the committed states by `values` (a checkpoint's; the same length).
+    pub fn restore_states(&mut self, values: &[f64]) {
+        self.states.restore(values);
+        self.refresh_damage_marks();
+    }
+
+    /// Replace the state buffers by `states` (saved from this group, e.g. before a trial).
+    pub fn replace_states(&mut self, states: PointStates) {
+        assert_eq!(states.current().len(), self.states.current().len());
+        self.states = states;
+        self.refresh_damage_marks();
+    }
+
+    /// Recompute [`ElementGroup::damage_marks`] from the committed states.
+    fn refresh_damage_marks(&mut self) {
+        self.damage_marks = marks_of(
+            &self.material,
+            &self.states,
+            self.integration.points(),
+            self.len(),
+        );
     }
 
     /// Run the force passes of the group in place or buffered
@@ -913,6 +1002,10 @@ struct Kernel<'k> {
     states: StateAccess,
     /// State values per element.
     stride: usize,
+    /// State values per integration point.
+    point_stride: usize,
+    /// Marked here when an element's new state has a yielded point.
+    marks: &'k DamageMarks,
     beta: f64,
     /// Fully integrated elements through [`hex8_full_lanes`] (else [`hex8_full`]).
     lanes: bool,
@@ -1069,6 +1162,13 @@ impl Kernel<'_> {
                 }
                 self.damping(le, fd);
             }
+        }
+        if material.has_damage()
+            && new_s
+                .chunks_exact(self.point_stride)
+                .any(|p| material.may_hold_damage(p))
+        {
+            self.marks.mark(le);
         }
     }
 }

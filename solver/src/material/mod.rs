@@ -127,6 +127,17 @@ impl Material {
         matches!(self, Material::PlasticDamage(_))
     }
 
+    /// The point state may hold damage: false only when D_t = D_c = 0 exactly (a
+    /// plastic-damage point that has never yielded; every point of a model without
+    /// damage).
+    #[inline]
+    pub fn may_hold_damage(&self, state: &[f64]) -> bool {
+        match self {
+            Material::Elastic(_) => false,
+            Material::PlasticDamage(p) => p.has_yielded(state),
+        }
+    }
+
     /// (D_t, D_c) of a point state (eq. 24; `None` for models without damage): the two
     /// values of [`Material::damage_state`] that the damaged volume needs, without its
     /// other fields.

@@ -68,7 +68,7 @@ pub fn write_checkpoint(w: &mut impl Write, sim: &Simulation) -> std::io::Result
             }
         }
         for g in &sim.model.groups {
-            let s = g.states.current();
+            let s = g.states().current();
             w.write_all(&(s.len() as u64).to_le_bytes())?;
             put_f64s(w, s)?;
         }
@@ -184,15 +184,15 @@ pub fn read_checkpoint(bytes: &[u8], file: &str, sim: &mut Simulation) -> Result
     }
     for g in sim.model.groups.iter_mut() {
         let len = r.u64()?;
-        if len as usize != g.states.current().len() {
+        if len as usize != g.states().current().len() {
             return Err(mismatch(
                 "state values in a group",
                 len,
-                g.states.current().len(),
+                g.states().current().len(),
             ));
         }
         let values: Vec<f64> = (0..len).map(|_| r.f64()).collect::<Result<_>>()?;
-        g.states.restore(&values);
+        g.restore_states(&values);
     }
     let nc = r.u64()? as usize;
     let contact: Vec<f64> = (0..nc).map(|_| r.f64()).collect::<Result<_>>()?;

@@ -678,7 +678,7 @@ impl Simulation {
         match self.subcycling.as_ref() {
             None => {
                 for g in self.model.groups.iter_mut() {
-                    g.states.commit();
+                    g.commit_states();
                 }
             }
             Some(s) => {

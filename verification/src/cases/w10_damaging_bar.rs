@@ -190,8 +190,8 @@ fn hourglass_energy(sim: &Simulation) -> f64 {
     let mut e = 0.0;
     for g in &sim.model.groups {
         if let GroupGeometry::Uniform(geo) = &g.geometry {
-            let states = g.states.current();
-            let stride = g.states.stride();
+            let states = g.states().current();
+            let stride = g.states().stride();
             for (le, ge) in geo.iter().enumerate() {
                 let q = ge.hourglass_modes(&g.element_displacements(le, &sim.u));
                 let qq: f64 = q.iter().flatten().map(|x| x * x).sum();
@@ -212,9 +212,9 @@ fn dissipation(sim: &Simulation) -> (f64, f64) {
         let Material::PlasticDamage(pd) = &g.material else {
             continue;
         };
-        let stride = g.states.stride();
+        let stride = g.states().stride();
         let np = g.integration.points();
-        let states = g.states.current();
+        let states = g.states().current();
         for le in 0..g.len() {
             for gp in 0..np {
                 let s = &states[(le * np + gp) * stride..(le * np + gp + 1) * stride];

@@ -80,6 +80,6 @@ pub fn build_with(
 /// integrated element are equal under homogeneous strain).
 pub fn point_state(sim: &Simulation) -> &[f64] {
     let g = &sim.model.groups[0];
-    let stride = g.states.stride();
-    &g.states.current()[..stride]
+    let stride = g.states().stride();
+    &g.states().current()[..stride]
 }

@@ -537,6 +537,14 @@ impl PlasticDamage {
         self.constants.tension.damage(s[slot::Y_T])
     }
 
+    /// The point has yielded (y_t or y_c ≠ 0; also true for a non-finite state). A point
+    /// for which this is false has D_t = D_c = 0 exactly (eq. 24: `Hardening::damage` of
+    /// y = 0 is 0).
+    #[inline]
+    pub fn has_yielded(&self, s: &[f64]) -> bool {
+        s[slot::Y_T] != 0.0 || s[slot::Y_C] != 0.0
+    }
+
     /// D_c = 1 − e^(−d_c ε̃ᵖ_c) (eq. 24).
     pub fn compressive_damage(&self, s: &[f64]) -> f64 {
         self.constants.compression.damage(s[slot::Y_C])

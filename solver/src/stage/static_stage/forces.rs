@@ -58,7 +58,7 @@ impl ForceBuffers {
 /// ones.
 pub fn commit_states(model: &mut Model) {
     for g in model.groups.iter_mut() {
-        g.states.commit();
+        g.commit_states();
     }
 }
 

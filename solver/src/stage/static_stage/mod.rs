@@ -180,7 +180,8 @@ fn solve_step(
             if cx.plan.relaxation.predictor && substeps <= 1 && direct::contact_ties(&model).is_ok()
             {
                 let mut trial = u.to_vec();
-                let saved_states: Vec<_> = model.groups.iter().map(|g| g.states.clone()).collect();
+                let saved_states: Vec<_> =
+                    model.groups.iter().map(|g| g.states().clone()).collect();
                 match direct::solve(
                     &mut model,
                     &mut trial,
@@ -193,7 +194,7 @@ fn solve_step(
                     Ok(_) => u.copy_from_slice(&trial),
                     Err(_) => {
                         for (g, s) in model.groups.iter_mut().zip(saved_states) {
-                            g.states = s;
+                            g.replace_states(s);
                         }
                     }
                 }

@@ -1,0 +1,36 @@
+//! Helpers shared by the integration tests (each test file includes this module with
+//! `mod common;` and uses what it needs).
+#![allow(dead_code)]
+
+use dcfm::material::plastic_damage::PlasticDamageParams;
+use dcfm::material::{Elastic, Material, PlasticDamage};
+
+/// A deterministic generator for random-looking inputs: a 64-bit LCG with Knuth's MMIX
+/// constants, the top 53 bits as a number in [−½, ½) — the same sequence on every
+/// machine, no dependency.
+pub struct Lcg(pub u64);
+
+impl Lcg {
+    /// The next number in [−½, ½).
+    pub fn centred(&mut self) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (self.0 >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    }
+}
+
+/// The plastic-damage concrete of the damaging test blocks (f_t 2.9 MPa, f_c0 13 MPa,
+/// f_c 24.1 MPa, G_t 200 N/m, G_c 1e4 N/m; `PlasticDamageParams::from_strengths`) over
+/// `elastic`.
+pub fn damaging_concrete(elastic: Elastic) -> Material {
+    Material::PlasticDamage(Box::new(
+        PlasticDamage::new(
+            "concrete",
+            elastic,
+            &PlasticDamageParams::from_strengths(2.9e6, 13e6, 24.1e6, 200.0, 1e4),
+        )
+        .unwrap(),
+    ))
+}

@@ -11,6 +11,7 @@ pub mod frames;
 pub mod mesh_cmd;
 pub mod motion_cmd;
 pub mod output;
+pub mod peaks;
 pub mod progress;
 pub mod run;
 pub mod static_run;

@@ -20,6 +20,7 @@ use crate::output::{
     write_atomic_with, write_summary, write_vtu, write_vtu_compressed, HistoryWriter, Precision,
     PvdCollection, VtuField, VtuStrings,
 };
+use crate::peaks::{read_peaks, update_peaks, write_peaks, Peak};
 
 /// How to run.
 #[derive(Clone, Debug, Default)]
@@ -35,14 +36,6 @@ pub struct RunOptions {
     pub allow_long: bool,
     /// Draw a progress bar (on stderr, when it is a terminal).
     pub progress: bool,
-}
-
-/// Peak of a nodal quantity.
-#[derive(Clone, Copy, Debug, Default, Serialize)]
-pub struct Peak {
-    pub value: f64,
-    pub node: usize,
-    pub time: f64,
 }
 
 /// `summary.json`.
@@ -148,10 +141,6 @@ fn enable_subcycling(
         ));
     }
     Ok(())
-}
-
-fn norm(x: &[f64; 3]) -> f64 {
-    (x[0] * x[0] + x[1] * x[1] + x[2] * x[2]).sqrt()
 }
 
 /// The probes' column groups and what they read, resolved once before the step loop so
@@ -479,42 +468,6 @@ fn write_state_vtu_named(
     pvd.add(sim.time, name)
 }
 
-/// Magic of the run driver's block at the end of a checkpoint: the peaks so far.
-const PEAKS_MAGIC: &[u8; 8] = b"DCFMPK01";
-
-/// Append the peaks to a checkpoint (after the dynamic block), so that a resumed run keeps
-/// the maxima over the whole run, not only over its resumed part.
-fn write_peaks(w: &mut impl std::io::Write, peaks: &[Peak; 2]) -> std::io::Result<()> {
-    w.write_all(PEAKS_MAGIC)?;
-    for p in peaks {
-        for x in [p.value, p.node as f64, p.time] {
-            w.write_all(&x.to_le_bytes())?;
-        }
-    }
-    Ok(())
-}
-
-/// The peaks at the end of a checkpoint written with [`write_peaks`]; zero peaks for a
-/// checkpoint without that block.
-fn read_peaks(bytes: &[u8]) -> [Peak; 2] {
-    const LEN: usize = 8 + 6 * 8;
-    let Some(tail) = bytes.len().checked_sub(LEN).map(|k| &bytes[k..]) else {
-        return [Peak::default(); 2];
-    };
-    if &tail[..8] != PEAKS_MAGIC {
-        return [Peak::default(); 2];
-    }
-    let x: Vec<f64> = tail[8..]
-        .chunks_exact(8)
-        .map(|c| f64::from_le_bytes(c.try_into().expect("8 bytes")))
-        .collect();
-    [0, 3].map(|k| Peak {
-        value: x[k],
-        node: x[k + 1] as usize,
-        time: x[k + 2],
-    })
-}
-
 /// Write `checkpoint.bin` (atomically): the sealed file of
 /// [`dcfm::stage::checkpoint_seal`] around the static block, the dynamic state and the
 /// peaks.
@@ -799,7 +752,7 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
     };
     let n_elements = sim.model.n_elements();
     let n_active: usize = sim.model.groups.iter().map(|g| g.len()).sum();
-    let [mut peak_u, mut peak_v] = payload.map_or([Peak::default(); 2], read_peaks);
+    let mut peaks = payload.map_or([Peak::default(); 2], read_peaks);
     let mut row = Vec::with_capacity(header.len());
     let start_step = sim.step;
     let t0 = Instant::now();
@@ -822,7 +775,7 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
                     &fingerprint,
                     static_result.as_ref(),
                     &sim,
-                    &[peak_u, peak_v],
+                    &peaks,
                 )?;
             }
             let taken = if last { sim.step_to(end) } else { sim.step() };
@@ -832,23 +785,7 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
             if sim.step % output.history_every == 0 || sim.step == total_steps {
                 columns.row(&sim, &output, &mut row);
                 hist.append(&row)?;
-                for (i, (u, v)) in sim.u.iter().zip(&sim.v).enumerate() {
-                    let (nu, nv) = (norm(u), norm(v));
-                    if nu > peak_u.value {
-                        peak_u = Peak {
-                            value: nu,
-                            node: i,
-                            time: sim.time,
-                        };
-                    }
-                    if nv > peak_v.value {
-                        peak_v = Peak {
-                            value: nv,
-                            node: i,
-                            time: sim.time,
-                        };
-                    }
-                }
+                update_peaks(&mut peaks, &sim.u, &sim.v, sim.time);
             }
             if (output.vtu_every > 0 && sim.step % output.vtu_every == 0) || sim.step == total_steps
             {
@@ -867,7 +804,7 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
                     &fingerprint,
                     static_result.as_ref(),
                     &sim,
-                    &[peak_u, peak_v],
+                    &peaks,
                 )?;
             }
             if sim.step % 64 == 0 {
@@ -931,8 +868,8 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
         energies: sim.energies,
         energy_residual: sim.energies.residual(),
         energy_residual_relative: sim.energies.relative_residual(),
-        peak_displacement: peak_u,
-        peak_velocity: peak_v,
+        peak_displacement: peaks[0],
+        peak_velocity: peaks[1],
         resumed_from_step: resumed_from,
         contact_unsettled_steps: sim
             .model

@@ -6,6 +6,12 @@
 //! 0.5, and 0 where every element counts), every element with a damaged point is marked,
 //! and part of the block is left unmarked (so the test sees the skipping). The marks
 //! recomputed from restored states (a checkpoint's) give the same volumes.
+//!
+//! The scan also keeps, between rows, each element's answers (D_t, D_c at or above the
+//! threshold) and reads again only the elements whose hardening the force kernel saw move
+//! (`element::damage_scan`). Scanned every step like a history row, with one threshold and
+//! measure, it matches a scan that reads every state bit for bit at every check, also
+//! across a restore of the states.
 
 mod common;
 
@@ -139,6 +145,48 @@ fn the_marked_scan_is_the_full_scan_bit_for_bit() {
                 .map(|g| bits(g.damaged_volume(0.1, false)))
                 .collect();
             assert_eq!(before, after, "{label}: after a restore");
+        }
+    }
+}
+
+#[test]
+fn kept_answers_are_the_states_bit_for_bit() {
+    for integration in [Integration::Full, Integration::OnePoint] {
+        for (subcycled, in_place) in [(false, true), (true, true), (false, false)] {
+            for (threshold, per_element) in [(0.1, false), (0.5, true), (0.02, false)] {
+                let label = format!(
+                    "{integration:?}, subcycled {subcycled}, in place {in_place}, threshold \
+                     {threshold}, per element {per_element}"
+                );
+                let mut sim = simulation(integration, subcycled, in_place);
+                let mut grown = false;
+                let mut first = None;
+                for step in 1..=80 {
+                    sim.run_steps(1).unwrap();
+                    for (k, g) in sim.model.groups.iter().enumerate() {
+                        // The history row, every step.
+                        let row = g.damaged_volume(threshold, per_element);
+                        if step % 4 == 0 {
+                            assert_eq!(
+                                bits(row),
+                                bits(g.damaged_volume_scanning_all(threshold, per_element)),
+                                "{label}: step {step}, group {k}"
+                            );
+                        }
+                        if k == 0 {
+                            grown |= first.is_some_and(|f: [f64; 3]| row[2] > f[2]);
+                            first.get_or_insert(row);
+                        }
+                    }
+                    if step == 40 {
+                        for g in &mut sim.model.groups {
+                            let values = g.states().current().to_vec();
+                            g.restore_states(&values);
+                        }
+                    }
+                }
+                assert!(grown, "{label}: the damaged volume grows while scanned");
+            }
         }
     }
 }

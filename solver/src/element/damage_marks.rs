@@ -50,6 +50,24 @@ impl DamageMarks {
         self.0[le].load(Ordering::Relaxed)
     }
 
+    /// Element `le` was marked; the mark is cleared (a load first: no write when it was
+    /// not marked).
+    #[inline]
+    pub fn take(&self, le: usize) -> bool {
+        let m = &self.0[le];
+        m.load(Ordering::Relaxed) && m.swap(false, Ordering::Relaxed)
+    }
+
+    /// Number of elements.
+    pub fn len(&self) -> usize {
+        self.0.len()
+    }
+
+    /// No elements.
+    pub fn is_empty(&self) -> bool {
+        self.0.is_empty()
+    }
+
     /// Number of marked elements.
     pub fn count(&self) -> usize {
         self.0.iter().filter(|m| m.load(Ordering::Relaxed)).count()
@@ -69,5 +87,7 @@ mod tests {
         assert_eq!(m.count(), 2);
         let c = m.clone();
         assert!(c.is_marked(1) && c.is_marked(3) && !c.is_marked(4));
+        assert!(m.take(1) && !m.take(1) && !m.take(0));
+        assert!(!m.is_marked(1) && c.is_marked(1));
     }
 }

@@ -6,6 +6,7 @@ use rayon::prelude::*;
 
 use crate::element::colouring::BLOCK;
 use crate::element::damage_marks::DamageMarks;
+use crate::element::damage_scan::{DamageScan, KNOWN_POINTS};
 use crate::element::hex8_full::{self, FullGeometry};
 use crate::element::hex8_full_lanes;
 use crate::element::hex8_uniform::{self, UniformGeometry};
@@ -67,6 +68,9 @@ pub struct ElementGroup {
     /// The elements that may hold damage ([`DamageMarks`]): marked by the force passes,
     /// recomputed whenever the states change otherwise.
     damage_marks: DamageMarks,
+    /// What the damaged-volume scan keeps between history rows ([`DamageScan`]):
+    /// forgotten whenever the states change other than by a committed force pass.
+    damage_scan: DamageScan,
     /// Initial strain ε₀ of every integration point (in-situ stress σ₀ = E₀ : ε₀), added to
     /// the strain of the displacements before the material update; `None` (no cost) for
     /// groups without initial stress (`docs/static_stage.md`).
@@ -237,6 +241,7 @@ macro_rules! kernel {
             stride,
             point_stride: $g.states.stride(),
             marks: &$g.damage_marks,
+            changes: $g.damage_scan.changes(),
             beta: $beta,
             lanes: $g.lanes,
             u: $u,
@@ -311,6 +316,7 @@ impl ElementGroup {
         let states = PointStates::new(stride, n_points, |_, s| material.init_state(s));
         let element_forces = ElementForces::default_for(&material, elements.len());
         let damage_marks = marks_of(&material, &states, integration.points(), elements.len());
+        let damage_scan = DamageScan::new(elements.len());
         Ok(Self {
             region,
             name: mesh.region_names[region].clone(),
@@ -326,6 +332,7 @@ impl ElementGroup {
             colour_blocks,
             states,
             damage_marks,
+            damage_scan,
             initial_strain: None,
             reference: None,
             lanes: true,
@@ -617,16 +624,19 @@ impl ElementGroup {
     pub fn damaged_volume(&self, threshold: f64, per_element: bool) -> [f64; 3] {
         if threshold > 0.0 {
             // Only the marked elements can reach a threshold above zero.
-            self.damaged_volume_of(threshold, per_element, |le| self.damage_marks.is_marked(le))
+            self.damaged_volume_of(threshold, per_element, true, |le| {
+                self.damage_marks.is_marked(le)
+            })
         } else {
-            self.damaged_volume_of(threshold, per_element, |_| true)
+            self.damaged_volume_of(threshold, per_element, true, |_| true)
         }
     }
 
-    /// [`ElementGroup::damaged_volume`] visiting every element: the reference the marked
-    /// scan is tested against.
+    /// [`ElementGroup::damaged_volume`] reading every element's states, without the
+    /// marks or the kept answers of [`DamageScan`] (and leaving them as they are): the
+    /// reference the scan is tested against. Allocates.
     pub fn damaged_volume_scanning_all(&self, threshold: f64, per_element: bool) -> [f64; 3] {
-        self.damaged_volume_of(threshold, per_element, |_| true)
+        self.damaged_volume_of(threshold, per_element, false, |_| true)
     }
 
     /// Number of elements marked as possibly damaged ([`DamageMarks`]).
@@ -635,11 +645,14 @@ impl ElementGroup {
     }
 
     /// The damaged volume over the elements with `visit(le)`, in chunks of
-    /// [`DAMAGE_CHUNK`] elements summed in order (the same sums on any thread count).
+    /// [`DAMAGE_CHUNK`] elements summed in order (the same sums on any thread count); with
+    /// `keep_answers`, through [`DamageScan`] (the states of an element whose hardening
+    /// has not moved since its last reading are not read again).
     fn damaged_volume_of(
         &self,
         threshold: f64,
         per_element: bool,
+        keep_answers: bool,
         visit: impl Fn(usize) -> bool + Sync,
     ) -> [f64; 3] {
         if !self.material.has_damage() {
@@ -648,8 +661,7 @@ impl ElementGroup {
         let stride = self.states.stride();
         let np = self.integration.points();
         let state = self.states.current();
-        let add = |v: &mut [f64; 3], dt: f64, dc: f64, vol: f64| {
-            let (t, c) = (dt >= threshold, dc >= threshold);
+        let add = |v: &mut [f64; 3], t: bool, c: bool, vol: f64| {
             if t {
                 v[0] += vol;
             }
@@ -660,41 +672,85 @@ impl ElementGroup {
                 v[2] += vol;
             }
         };
-        let n_chunks = self.len().div_ceil(DAMAGE_CHUNK);
-        let partial: Vec<[f64; 3]> = (0..n_chunks)
-            .into_par_iter()
-            .map(|c| {
-                let mut v = [0.0; 3];
-                for le in c * DAMAGE_CHUNK..((c + 1) * DAMAGE_CHUNK).min(self.len()) {
-                    if !visit(le) {
-                        continue;
-                    }
+        let damage = |p: usize| {
+            self.material
+                .tensile_and_compressive_damage(&state[p * stride..(p + 1) * stride])
+        };
+        // Element `le`'s volumes added to `v`: from its kept answers `bits` when `kept`,
+        // else from its states, the answers stored in `bits`.
+        let element = |le: usize, v: &mut [f64; 3], bits: &mut u16, kept: bool| {
+            if per_element {
+                if !kept {
                     let (mut et, mut ec) = (0.0, 0.0);
                     for gp in 0..np {
-                        let p = le * np + gp;
-                        if let Some((dt, dc)) = self
-                            .material
-                            .tensile_and_compressive_damage(&state[p * stride..(p + 1) * stride])
-                        {
+                        if let Some((dt, dc)) = damage(le * np + gp) {
                             let pv = self.point_volume(le, gp);
-                            if per_element {
-                                et += dt * pv / self.volume[le];
-                                ec += dc * pv / self.volume[le];
-                            } else {
-                                add(&mut v, dt, dc, pv);
-                            }
+                            et += dt * pv / self.volume[le];
+                            ec += dc * pv / self.volume[le];
                         }
                     }
-                    if per_element {
-                        add(&mut v, et, ec, self.volume[le]);
+                    *bits = answers(et >= threshold, ec >= threshold);
+                }
+                add(v, *bits & 1 != 0, *bits & 2 != 0, self.volume[le]);
+                return;
+            }
+            if !kept {
+                *bits = 0;
+            }
+            for gp in 0..np {
+                let (t, c) = if kept {
+                    let b = *bits >> (2 * gp);
+                    (b & 1 != 0, b & 2 != 0)
+                } else {
+                    let (t, c) = match damage(le * np + gp) {
+                        Some((dt, dc)) => (dt >= threshold, dc >= threshold),
+                        None => (false, false),
+                    };
+                    if gp < KNOWN_POINTS {
+                        *bits |= answers(t, c) << (2 * gp);
+                    }
+                    (t, c)
+                };
+                add(v, t, c, self.point_volume(le, gp));
+            }
+        };
+        let chunk_elements = |c: usize| c * DAMAGE_CHUNK..((c + 1) * DAMAGE_CHUNK).min(self.len());
+        if !keep_answers {
+            // Every state read, nothing kept or changed.
+            let partial: Vec<[f64; 3]> = (0..self.len().div_ceil(DAMAGE_CHUNK))
+                .into_par_iter()
+                .map(|c| {
+                    let mut v = [0.0; 3];
+                    for le in chunk_elements(c).filter(|&le| visit(le)) {
+                        element(le, &mut v, &mut 0, false);
+                    }
+                    v
+                })
+                .collect();
+            return partial
+                .iter()
+                .fold([0.0; 3], |a, p| std::array::from_fn(|k| a[k] + p[k]));
+        }
+        // Kept answers only while passes commit in place (module docs of DamageScan).
+        let reuse = self.states.is_in_place() && np <= KNOWN_POINTS;
+        let scan = &self.damage_scan;
+        scan.sum_in_order(
+            self.len(),
+            DAMAGE_CHUNK,
+            threshold,
+            per_element,
+            |c, known| {
+                let mut v = [0.0; 3];
+                for (le, bits) in chunk_elements(c).zip(known.iter_mut()) {
+                    if visit(le) {
+                        // (`unchanged` clears the element's mark: `element` stores answers)
+                        let kept = scan.unchanged(le) && reuse;
+                        element(le, &mut v, bits, kept);
                     }
                 }
                 v
-            })
-            .collect();
-        partial
-            .iter()
-            .fold([0.0; 3], |a, p| std::array::from_fn(|k| a[k] + p[k]))
+            },
+        )
     }
 
     /// Elastic strain energy ½ ∫ ε : E0 : ε dV (+ hourglass energy ½ κ q²) of the group for
@@ -800,6 +856,7 @@ impl ElementGroup {
             colour_blocks,
             states,
             damage_marks,
+            damage_scan: DamageScan::new(kept.len()),
             initial_strain: self.initial_strain.as_ref().map(|e0| {
                 kept.iter()
                     .flat_map(|&le| e0[le * np..(le + 1) * np].iter().copied())
@@ -962,6 +1019,7 @@ impl ElementGroup {
 
     /// Recompute [`ElementGroup::damage_marks`] from the committed states.
     fn refresh_damage_marks(&mut self) {
+        self.damage_scan.forget();
         self.damage_marks = marks_of(
             &self.material,
             &self.states,
@@ -975,6 +1033,7 @@ impl ElementGroup {
     pub fn set_states_in_place(&mut self, in_place: bool) {
         let per = self.state_values_per_element();
         self.states.set_in_place(in_place, per);
+        self.damage_scan.forget();
     }
 
     /// Material state values of one element (all its integration points).
@@ -1006,6 +1065,8 @@ struct Kernel<'k> {
     point_stride: usize,
     /// Marked here when an element's new state has a yielded point.
     marks: &'k DamageMarks,
+    /// Marked here when an element's hardening variables moved ([`DamageScan`]).
+    changes: &'k DamageMarks,
     beta: f64,
     /// Fully integrated elements through [`hex8_full_lanes`] (else [`hex8_full`]).
     lanes: bool,
@@ -1169,6 +1230,13 @@ impl Kernel<'_> {
                 .any(|p| material.may_hold_damage(p))
         {
             self.marks.mark(le);
+            if old_s
+                .chunks_exact(self.point_stride)
+                .zip(new_s.chunks_exact(self.point_stride))
+                .any(|(o, n)| material.hardening_moved(o, n))
+            {
+                self.changes.mark(le);
+            }
         }
     }
 }
@@ -1275,4 +1343,10 @@ fn damping_force_full(
             .map(|x| beta * x);
         g.add_forces(gp, &s, f);
     }
+}
+
+/// The two answers (D_t, D_c at or above the threshold) as bits 0 and 1 ([`DamageScan`]).
+#[inline]
+fn answers(t: bool, c: bool) -> u16 {
+    u16::from(t) | (u16::from(c) << 1)
 }

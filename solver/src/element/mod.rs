@@ -7,6 +7,7 @@ pub mod anchor_mat;
 pub mod anchor_pattern;
 pub mod colouring;
 pub mod damage_marks;
+pub mod damage_scan;
 pub mod fields;
 pub mod groups;
 pub mod hex8_full;

@@ -122,6 +122,16 @@ impl Material {
         }
     }
 
+    /// The hardening variables (hence D_t, D_c) of a point differ between its states
+    /// `old` and `new` (false for models without damage).
+    #[inline]
+    pub fn hardening_moved(&self, old: &[f64], new: &[f64]) -> bool {
+        match self {
+            Material::Elastic(_) => false,
+            Material::PlasticDamage(p) => p.hardening_moved(old, new),
+        }
+    }
+
     /// True when the model carries damage variables.
     pub fn has_damage(&self) -> bool {
         matches!(self, Material::PlasticDamage(_))

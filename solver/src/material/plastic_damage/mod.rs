@@ -545,6 +545,13 @@ impl PlasticDamage {
         s[slot::Y_T] != 0.0 || s[slot::Y_C] != 0.0
     }
 
+    /// y_t or y_c differs between the states `old` and `new` of a point (so may D_t, D_c
+    /// of eq. 24); also true when either is NaN.
+    #[inline]
+    pub fn hardening_moved(&self, old: &[f64], new: &[f64]) -> bool {
+        old[slot::Y_T] != new[slot::Y_T] || old[slot::Y_C] != new[slot::Y_C]
+    }
+
     /// D_c = 1 − e^(−d_c ε̃ᵖ_c) (eq. 24).
     pub fn compressive_damage(&self, s: &[f64]) -> f64 {
         self.constants.compression.damage(s[slot::Y_C])

@@ -40,6 +40,22 @@ fn material_update(c: &mut Criterion) {
     g.bench_function("plastic_damage_plastic_branch_compression", |b| {
         b.iter(|| pd.update(black_box(&crush), black_box(&old), &mut new, &ctx))
     });
+    // A cracked point (y_t > 0 after the tensile return above) unloading elastically into
+    // a mixed tension–compression state: the branch most yielded points of a damaged model
+    // take in most steps (trial inside the current surface, r(σ̄) from principal values).
+    let mut cracked = vec![0.0; n];
+    pd.update(&crack, &old, &mut cracked, &ctx);
+    let unloading = [1.5e-4, -1.5e-4, 2e-5, 5e-5, -3e-5, 4e-5];
+    let mut next = vec![0.0; n];
+    pd.update(&unloading, &cracked, &mut next, &ctx);
+    assert_eq!(
+        pd.plastic_strain(&next),
+        pd.plastic_strain(&cracked),
+        "the unloading strain must stay elastic"
+    );
+    g.bench_function("plastic_damage_cracked_elastic_mixed", |b| {
+        b.iter(|| pd.update(black_box(&unloading), black_box(&cracked), &mut next, &ctx))
+    });
     g.finish();
 }
 

@@ -1167,9 +1167,24 @@ impl Kernel<'_> {
             "state slice of element {le} out of bounds"
         );
         // SAFETY: each element owns the state slice `range` of both buffers, and every
-        // pass evaluates an element at most once; the in-place pass reads a copy.
+        // pass evaluates an element at most once; the in-place pass reads a copy (or, in
+        // lanes, updates the states where they are, copying only what it must).
         let new_s =
             unsafe { std::slice::from_raw_parts_mut(self.states.new.add(range.start), stride) };
+        let material = self.material;
+        if let (true, true, GroupGeometry::Full(g)) =
+            (self.states.in_place, self.lanes, &self.geometry)
+        {
+            let e0 = self.initial.map(|e0| &e0[8 * le..8 * le + 8]);
+            *fe = [[0.0; 3]; 8];
+            *fd = [[0.0; 3]; 8];
+            let moved = hex8_full_lanes::internal_force_in_place(
+                &g[le], material, &ue, e0, new_s, &ctx, fe,
+            );
+            self.damping(le, fd);
+            self.mark_damage(le, new_s, || moved);
+            return;
+        }
         let mut copy = std::mem::MaybeUninit::<[f64; MAX_ELEMENT_STATE]>::uninit();
         let old_s: &[f64] = if self.states.in_place {
             // The committed state of the element, read once into the copy (which
@@ -1186,7 +1201,6 @@ impl Kernel<'_> {
         };
         *fe = [[0.0; 3]; 8];
         *fd = [[0.0; 3]; 8];
-        let material = self.material;
         match self.geometry {
             GroupGeometry::Uniform(g) => {
                 match self.initial {
@@ -1224,17 +1238,27 @@ impl Kernel<'_> {
                 self.damping(le, fd);
             }
         }
+        self.mark_damage(le, new_s, || {
+            old_s
+                .chunks_exact(self.point_stride)
+                .zip(new_s.chunks_exact(self.point_stride))
+                .any(|(o, n)| material.hardening_moved(o, n))
+        });
+    }
+
+    /// Mark element `le`, whose new states are `new_s`, as one that may hold damage when a
+    /// point of it may, and then as one whose damage changed when `moved()` (the hardening
+    /// of some point moved in this pass).
+    #[inline(always)]
+    fn mark_damage(&self, le: usize, new_s: &[f64], moved: impl FnOnce() -> bool) {
+        let material = self.material;
         if material.has_damage()
             && new_s
                 .chunks_exact(self.point_stride)
                 .any(|p| material.may_hold_damage(p))
         {
             self.marks.mark(le);
-            if old_s
-                .chunks_exact(self.point_stride)
-                .zip(new_s.chunks_exact(self.point_stride))
-                .any(|(o, n)| material.hardening_moved(o, n))
-            {
+            if moved() {
                 self.changes.mark(le);
             }
         }

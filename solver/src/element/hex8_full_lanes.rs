@@ -132,6 +132,46 @@ pub fn internal_force(
     ctx: &PointContext,
     f: &mut [[f64; 3]; 8],
 ) {
+    let eps = strains_with_initial(geo, u, eps0);
+    let sigma = match material {
+        Material::Elastic(e) => elastic_stress(e.lambda, e.mu, &eps),
+        Material::PlasticDamage(p) => p.update_points(&eps, old, new, ctx),
+    };
+    *f = point_forces(geo, &sigma);
+}
+
+/// [`internal_force`] with the element's material states updated in place (`states`: the
+/// committed states on entry, the new ones on return; [`PlasticDamage::update_points_in_place`]):
+/// the same forces and states bit for bit, without a copy of the element's states. Returns
+/// whether the hardening of any point moved ([`Material::hardening_moved`] of the old and
+/// the new state of some point).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+pub fn internal_force_in_place(
+    geo: &FullGeometry,
+    material: &Material,
+    u: &[[f64; 3]; 8],
+    eps0: Option<&[Voigt]>,
+    states: &mut [f64],
+    ctx: &PointContext,
+    f: &mut [[f64; 3]; 8],
+) -> bool {
+    let eps = strains_with_initial(geo, u, eps0);
+    let (sigma, moved) = match material {
+        Material::Elastic(e) => (elastic_stress(e.lambda, e.mu, &eps), false),
+        Material::PlasticDamage(p) => p.update_points_in_place(&eps, states, ctx),
+    };
+    *f = point_forces(geo, &sigma);
+    moved
+}
+
+/// Strains of the eight points ([`point_strains`]) plus the initial strains `eps0`, if any.
+#[inline(always)]
+fn strains_with_initial(
+    geo: &FullGeometry,
+    u: &[[f64; 3]; 8],
+    eps0: Option<&[Voigt]>,
+) -> VoigtLanes {
     let mut eps = point_strains(geo, u);
     if let Some(e0) = eps0 {
         for (g, e0g) in e0.iter().enumerate().take(8) {
@@ -140,11 +180,7 @@ pub fn internal_force(
             }
         }
     }
-    let sigma = match material {
-        Material::Elastic(e) => elastic_stress(e.lambda, e.mu, &eps),
-        Material::PlasticDamage(p) => p.update_points(&eps, old, new, ctx),
-    };
-    *f = point_forces(geo, &sigma);
+    eps
 }
 
 /// One call of [`internal_force`] as a [`LaneWork`], for callers outside the step (tests,
@@ -244,13 +280,64 @@ mod tests {
         }
     }
 
-    /// Forces and states of the lane kernel (plain and dispatched) against the scalar
-    /// kernel, for `draws` random elements, with and without an initial strain. Returns
-    /// the number of points updated to a damaged and to an undamaged state.
-    fn compare(material: &Material, mag: (f64, f64), draws: usize, seed: u64) -> (usize, usize) {
+    /// Forces and states the same bit for bit (`what`: the case, for the message).
+    fn assert_same(
+        got: &[[f64; 3]; 8],
+        want: &[[f64; 3]; 8],
+        got_state: &[f64],
+        want_state: &[f64],
+        what: &str,
+    ) {
+        assert_eq!(
+            bits(got.as_flattened()),
+            bits(want.as_flattened()),
+            "forces, {what}"
+        );
+        assert_eq!(bits(got_state), bits(want_state), "states, {what}");
+    }
+
+    /// [`internal_force_in_place`] as a [`LaneWork`].
+    struct InPlace<'a> {
+        geo: &'a FullGeometry,
+        material: &'a Material,
+        u: &'a [[f64; 3]; 8],
+        eps0: Option<&'a [Voigt]>,
+        states: &'a mut [f64],
+        ctx: &'a PointContext,
+        f: &'a mut [[f64; 3]; 8],
+    }
+
+    impl LaneWork for InPlace<'_> {
+        type Output = bool;
+        #[inline(always)]
+        fn run(self) -> bool {
+            internal_force_in_place(
+                self.geo,
+                self.material,
+                self.u,
+                self.eps0,
+                self.states,
+                self.ctx,
+                self.f,
+            )
+        }
+    }
+
+    /// Forces and states of the lane kernel (plain and dispatched, buffered and in place)
+    /// against the scalar kernel, for `draws` random elements, with and without an initial
+    /// strain; in place also whether some point's hardening moved. Returns the number of
+    /// points updated to a damaged and to an undamaged state, and whether the in-place
+    /// kernel reported [no hardening moved, some moved] in some draw.
+    fn compare(
+        material: &Material,
+        mag: (f64, f64),
+        draws: usize,
+        seed: u64,
+    ) -> (usize, usize, [bool; 2]) {
         let mut rng = Lcg(seed);
         let stride = material.state_len();
         let (mut damaged, mut intact) = (0, 0);
+        let mut moved_seen = [false; 2];
         for draw in 0..draws {
             let m = mag.0 * (mag.1 / mag.0).powf(rng.next());
             let (geo, u) = random_element(&mut rng, m);
@@ -301,17 +388,41 @@ mod tests {
                         } else {
                             call.run()
                         }
-                        assert_eq!(
-                            bits(got.as_flattened()),
-                            bits(want.as_flattened()),
-                            "forces, draw {draw}, initial strain {}, dispatched {dispatched}",
+                        let what = format!(
+                            "draw {draw}, initial strain {}, dispatched {dispatched}",
                             eps0.is_some()
                         );
-                        assert_eq!(
-                            bits(&got_state),
-                            bits(&want_state),
-                            "states, draw {draw}, dispatched {dispatched}"
+                        assert_same(&got, &want, &got_state, &want_state, &what);
+                    }
+                    // In place: the committed states overwritten by the new ones.
+                    let want_moved = old
+                        .chunks_exact(stride.max(1))
+                        .zip(want_state.chunks_exact(stride.max(1)))
+                        .any(|(o, n)| material.hardening_moved(o, n));
+                    for dispatched in [false, true] {
+                        let mut got = [[0.0; 3]; 8];
+                        let mut states = old.clone();
+                        let call = InPlace {
+                            geo: &geo,
+                            material,
+                            u: &us,
+                            eps0,
+                            states: &mut states,
+                            ctx: &ctx,
+                            f: &mut got,
+                        };
+                        let moved = if dispatched {
+                            run_lane_work(call)
+                        } else {
+                            call.run()
+                        };
+                        let what = format!(
+                            "in place, draw {draw}, initial strain {}, dispatched {dispatched}",
+                            eps0.is_some()
                         );
+                        assert_same(&got, &want, &states, &want_state, &what);
+                        assert_eq!(moved, want_moved, "hardening moved, draw {draw}");
+                        moved_seen[usize::from(moved)] = true;
                     }
                     for state in want_state.chunks_exact(stride.max(1)) {
                         match material.tensile_and_compressive_damage(state) {
@@ -324,7 +435,7 @@ mod tests {
                 old = next;
             }
         }
-        (damaged, intact)
+        (damaged, intact, moved_seen)
     }
 
     #[test]
@@ -349,17 +460,19 @@ mod tests {
             &PlasticDamageParams::from_strengths(3e6, 20e6, 30e6, 100.0, 10e3),
         )
         .unwrap();
-        let (damaged, intact) = compare(
+        let (damaged, intact, moved_seen) = compare(
             &Material::PlasticDamage(Box::new(pd)),
             (1e-6, 3e-3),
             300,
             0x0dd_ba11_cafe_0002,
         );
-        // Both the never-yielded shortcut and the return mapping are exercised.
+        // Both the never-yielded shortcut and the return mapping are exercised, and the
+        // in-place kernel saw elements whose hardening moved and elements whose did not.
         assert!(
             damaged > 500 && intact > 500,
             "{damaged} damaged, {intact} intact points"
         );
+        assert_eq!(moved_seen, [true, true]);
     }
 
     #[test]

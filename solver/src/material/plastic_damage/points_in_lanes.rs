@@ -11,25 +11,28 @@ use crate::element::lanes::{elastic_stress, F64s, VoigtLanes, LANES};
 use crate::material::{PointContext, Voigt};
 
 impl PlasticDamage {
-    /// Update the eight points of an element, point g at strain lane g, its state
-    /// `old[g·LEN..]` → `new[g·LEN..]`; returns the nominal stresses, one lane per point.
-    /// The same states and stresses as [`PlasticDamage::update`] point by point.
+    /// The never-yielded shortcut of the eight points of an element whose states are
+    /// `states` (point g at `states[g·LEN..]`), strain lane g for point g: the effective
+    /// stresses σ̄ = E₀ : (ε − εᵖ) in lanes and which points pass
+    /// [`PlasticDamage::virgin_elastic`]'s check (never yielded, finite strain, inside the
+    /// initial surface by the margin). Reads the states only.
     #[inline(always)]
-    pub fn update_points(
+    fn virgin_lanes(
         &self,
         strain: &VoigtLanes,
-        old: &[f64],
-        new: &mut [f64],
+        states: &[f64],
         ctx: &PointContext,
-    ) -> VoigtLanes {
+    ) -> (VoigtLanes, [bool; LANES]) {
         const N: usize = slot::LEN;
-        let old = &old[..LANES * N];
-        let new = &mut new[..LANES * N];
         // The points the shortcut may take: never yielded, finite strain (else `update`
         // decides, as it does first).
         let mut candidate = [false; LANES];
         let mut plastic_rows = [[0.0; 6]; LANES];
-        for (g, (row, state)) in plastic_rows.iter_mut().zip(old.chunks_exact(N)).enumerate() {
+        for (g, (row, state)) in plastic_rows
+            .iter_mut()
+            .zip(states.chunks_exact(N))
+            .enumerate()
+        {
             candidate[g] = state[slot::Y_T] == 0.0
                 && state[slot::Y_C] == 0.0
                 && (0..6).all(|i| strain[i][g].is_finite());
@@ -51,17 +54,29 @@ impl PlasticDamage {
         } else {
             [false; LANES]
         };
+        (eff, pass)
+    }
+
+    /// Update the eight points of an element, point g at strain lane g, its state
+    /// `old[g·LEN..]` → `new[g·LEN..]`; returns the nominal stresses, one lane per point.
+    /// The same states and stresses as [`PlasticDamage::update`] point by point.
+    #[inline(always)]
+    pub fn update_points(
+        &self,
+        strain: &VoigtLanes,
+        old: &[f64],
+        new: &mut [f64],
+        ctx: &PointContext,
+    ) -> VoigtLanes {
+        const N: usize = slot::LEN;
+        let old = &old[..LANES * N];
+        let new = &mut new[..LANES * N];
+        let (eff, pass) = self.virgin_lanes(strain, old, ctx);
         let mut sigma = [F64s::ZERO; 6];
         for (g, (o, n)) in old.chunks_exact(N).zip(new.chunks_exact_mut(N)).enumerate() {
             if pass[g] {
-                // Value by value from the lanes: a point's Voigt vectors are never staged
-                // as arrays (a wide load of narrow stores stalls store forwarding).
                 n.copy_from_slice(o);
-                for i in 0..6 {
-                    n[slot::STRAIN + i] = strain[i][g];
-                    n[slot::STRESS + i] = eff[i][g];
-                }
-                n[slot::DAMAGE] = 0.0;
+                write_virgin(n, strain, &eff, g);
                 for i in 0..6 {
                     sigma[i][g] = eff[i][g];
                 }
@@ -75,4 +90,56 @@ impl PlasticDamage {
         }
         sigma
     }
+
+    /// [`Self::update_points`] with the states updated in place (`states[g·LEN..]`, the
+    /// committed state of point g on entry, its new state on return): a point that takes
+    /// the never-yielded shortcut has only its strain, stress and D written (the rest of
+    /// its state is the old one already), and only a point that takes the general update
+    /// is first copied, alone, to the stack as its old state. The same states and
+    /// stresses as [`Self::update_points`] bit for bit; second: whether the hardening of
+    /// any point moved ([`PlasticDamage::hardening_moved`] of its old and new state).
+    #[inline(always)]
+    pub fn update_points_in_place(
+        &self,
+        strain: &VoigtLanes,
+        states: &mut [f64],
+        ctx: &PointContext,
+    ) -> (VoigtLanes, bool) {
+        const N: usize = slot::LEN;
+        let states = &mut states[..LANES * N];
+        let (eff, pass) = self.virgin_lanes(strain, states, ctx);
+        let mut sigma = [F64s::ZERO; 6];
+        let mut moved = false;
+        for (g, n) in states.chunks_exact_mut(N).enumerate() {
+            if pass[g] {
+                write_virgin(n, strain, &eff, g);
+                for i in 0..6 {
+                    sigma[i][g] = eff[i][g];
+                }
+            } else {
+                let mut o = [0.0; N];
+                o.copy_from_slice(n);
+                let point: Voigt = std::array::from_fn(|i| strain[i][g]);
+                let s = self.update(&point, &o, n, ctx);
+                moved |= self.hardening_moved(&o, n);
+                for i in 0..6 {
+                    sigma[i][g] = s[i];
+                }
+            }
+        }
+        (sigma, moved)
+    }
+}
+
+/// What the never-yielded shortcut changes in the state `n` of point g (whose other values
+/// are its old ones): the strain, the stress σ = σ̄ and D = 0. Value by value from the
+/// lanes: a point's Voigt vectors are never staged as arrays (a wide load of narrow stores
+/// stalls store forwarding).
+#[inline(always)]
+fn write_virgin(n: &mut [f64], strain: &VoigtLanes, eff: &VoigtLanes, g: usize) {
+    for i in 0..6 {
+        n[slot::STRAIN + i] = strain[i][g];
+        n[slot::STRESS + i] = eff[i][g];
+    }
+    n[slot::DAMAGE] = 0.0;
 }

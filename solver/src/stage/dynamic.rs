@@ -48,6 +48,9 @@ use crate::stage::subcycling::{Subcycling, SubcyclingSummary};
 /// order whatever the number of threads.
 const NODE_CHUNK: usize = 1024;
 
+/// Touched nodes per parallel task (and per partial energy sum) of the contact correction.
+const CONTACT_CHUNK: usize = 256;
+
 /// Bit of `Simulation::node_kind` marking a node of the boundary system.
 const BOUNDARY_NODE: u8 = 1 << 3;
 
@@ -89,6 +92,10 @@ pub struct Simulation {
     /// Contact forces Rⁿ (zero except at the nodes listed in `contact_nodes`).
     r: Vec<[f64; 3]>,
     contact_nodes: Vec<u32>,
+    /// Scratch of the contact correction (stage 5): U^{n+1}, V^{n+½} of each touched node.
+    contact_corrected: Vec<([f64; 3], [f64; 3])>,
+    /// Scratch of the contact correction: the energy fix-up of each chunk of touched nodes.
+    contact_fix_parts: Vec<EnergyParts>,
     /// Index into `model.constraints.prescribed` for each node DOF (u32::MAX: none).
     prescribed_of: Vec<[u32; 3]>,
     /// Per node: its constrained DOF bits, plus [`BOUNDARY_NODE`] for a node of the
@@ -199,6 +206,8 @@ impl Simulation {
             loaded_nodes,
             r: vec![[0.0; 3]; n],
             contact_nodes: Vec::new(),
+            contact_corrected: Vec::new(),
+            contact_fix_parts: Vec::new(),
             prescribed_of,
             chunks: vec![ChunkResult::default(); n_chunks],
             contact_seconds: 0.0,
@@ -580,35 +589,61 @@ impl Simulation {
                 .extend_from_slice(contact.touched_nodes());
             self.contact_seconds += started.elapsed().as_secs_f64();
         }
-        // 5. Correction at the touched nodes (with the energy fix-up).
+        // 5. Correction at the touched nodes (with the energy fix-up), in fixed chunks of
+        // the touched-node list: each node's new motion on its own, the energy fix-up
+        // summed per chunk and the chunks in order (the same sums on any thread count).
+        let nodes = &self.contact_nodes;
+        let corrected = &mut self.contact_corrected;
+        corrected.clear();
+        corrected.resize(nodes.len(), ([0.0; 3], [0.0; 3]));
+        let fix_parts = &mut self.contact_fix_parts;
+        fix_parts.clear();
+        fix_parts.resize(nodes.len().div_ceil(CONTACT_CHUNK), [0.0; 13]);
+        {
+            let (u_next, v_next, r) = (&self.u_next, &self.v_next, &self.r);
+            let boundary_slot = &self.boundary_slot;
+            let boundaries = self.model.boundaries.as_ref();
+            let inv_mass = &self.model.inv_mass;
+            corrected
+                .par_chunks_mut(CONTACT_CHUNK)
+                .zip(fix_parts.par_iter_mut())
+                .zip(nodes.par_chunks(CONTACT_CHUNK))
+                .for_each(|((out, fix), ids)| {
+                    for (o, &i) in out.iter_mut().zip(ids) {
+                        let i = i as usize;
+                        let slot = boundary_slot[i];
+                        let (un, vn, before, after) = if slot != u32::MAX {
+                            // A boundary node: its update with the contact force as one
+                            // more force (the dashpot reacts to it within the step).
+                            let bs = boundaries.expect("slot of a boundary node");
+                            let (_, _, before) = ctx.boundary_node(i, bs, slot as usize, &[0.0; 3]);
+                            let (un, vn, after) = ctx.boundary_node(i, bs, slot as usize, &r[i]);
+                            (un, vn, before, after)
+                        } else {
+                            let w = inv_mass[i];
+                            let before = ctx.energy_parts(i, &v_next[i], &[0.0; 3]);
+                            let (mut un, mut vn) = (u_next[i], v_next[i]);
+                            for d in 0..3 {
+                                un[d] += h * dt_v * w * r[i][d];
+                                vn[d] += dt_v * w * r[i][d];
+                            }
+                            (un, vn, before, ctx.energy_parts(i, &vn, &r[i]))
+                        };
+                        *o = (un, vn);
+                        for k in 0..13 {
+                            fix[k] += after[k] - before[k];
+                        }
+                    }
+                });
+        }
+        for (&i, &(un, vn)) in nodes.iter().zip(corrected.iter()) {
+            self.u_next[i as usize] = un;
+            self.v_next[i as usize] = vn;
+        }
         let mut contact_fix: EnergyParts = [0.0; 13];
-        for &i in &self.contact_nodes {
-            let i = i as usize;
-            let slot = self.boundary_slot[i];
-            let (before, after) = if slot != u32::MAX {
-                // A boundary node: its update with the contact force as one more force
-                // (the dashpot reacts to it within the step).
-                let bs = self
-                    .model
-                    .boundaries
-                    .as_ref()
-                    .expect("slot of a boundary node");
-                let (_, _, before) = ctx.boundary_node(i, bs, slot as usize, &[0.0; 3]);
-                let (un, vn, after) = ctx.boundary_node(i, bs, slot as usize, &self.r[i]);
-                self.u_next[i] = un;
-                self.v_next[i] = vn;
-                (before, after)
-            } else {
-                let w = self.model.inv_mass[i];
-                let before = ctx.energy_parts(i, &self.v_next[i], &[0.0; 3]);
-                for d in 0..3 {
-                    self.u_next[i][d] += h * dt_v * w * self.r[i][d];
-                    self.v_next[i][d] += dt_v * w * self.r[i][d];
-                }
-                (before, ctx.energy_parts(i, &self.v_next[i], &self.r[i]))
-            };
+        for part in fix_parts.iter() {
             for k in 0..13 {
-                contact_fix[k] += after[k] - before[k];
+                contact_fix[k] += part[k];
             }
         }
         // 6. Energies, instability check.

@@ -101,15 +101,14 @@ impl DamageScan {
         !self.changed.take(le)
     }
 
-    /// Σ over the chunks of `chunk` elements of `elements` of `chunk_sum(c, known)`, the
-    /// chunks computed in parallel and added in the order c = 0, 1, … (the same sums on
-    /// any number of threads); `known` is chunk c's slice of the kept answers for
-    /// `threshold` and `per_element` (module docs). When these differ from the last
-    /// scan's, every element is marked changed first. Allocates only at a group's first
-    /// scan.
+    /// Σ over the chunks of `chunk` elements (of the scan's elements) of
+    /// `chunk_sum(c, known)`, the chunks computed in parallel and added in the order
+    /// c = 0, 1, … ([`add_in_order`]: the same sums on any number of threads); `known` is
+    /// chunk c's slice of the kept answers for `threshold` and `per_element` (module
+    /// docs). When these differ from the last scan's, every element is marked changed
+    /// first. Allocates only at a group's first scan.
     pub fn sum_in_order(
         &self,
-        elements: usize,
         chunk: usize,
         threshold: f64,
         per_element: bool,
@@ -121,8 +120,9 @@ impl DamageScan {
             partial,
             known,
         } = &mut *memory;
+        let elements = self.changed.len();
         let this = (threshold.to_bits(), per_element);
-        if *key != Some(this) || known.len() != elements || self.changed.len() != elements {
+        if *key != Some(this) || known.len() != elements {
             known.clear();
             known.resize(elements, 0);
             for le in 0..self.changed.len() {
@@ -139,10 +139,16 @@ impl DamageScan {
             .zip(known.par_chunks_mut(chunk.max(1)))
             .enumerate()
             .for_each(|(c, (sum, known))| *sum = chunk_sum(c, known));
-        partial[..chunks]
-            .iter()
-            .fold([0.0; 3], |a, p| std::array::from_fn(|k| a[k] + p[k]))
+        add_in_order(&partial[..chunks])
     }
+}
+
+/// Σ of the chunk sums `partial`, added in their order c = 0, 1, … (how every damaged
+/// volume is summed, with or without kept answers).
+pub fn add_in_order(partial: &[[f64; 3]]) -> [f64; 3] {
+    partial
+        .iter()
+        .fold([0.0; 3], |a, p| std::array::from_fn(|k| a[k] + p[k]))
 }
 
 #[cfg(test)]
@@ -165,31 +171,31 @@ mod tests {
         // At first every element is changed; the marks clear as they are taken.
         assert!(!scan.unchanged(3) && scan.unchanged(3));
         // The first scan marks every element changed (nothing is known).
-        assert_eq!(scan.sum_in_order(37, 8, 0.1, false, chunk_sum), expected);
+        assert_eq!(scan.sum_in_order(8, 0.1, false, chunk_sum), expected);
         assert!((0..37).all(|le| !scan.unchanged(le)));
         // The answers carry over to the next scan of the same threshold …
         scan.changes().mark(5);
-        scan.sum_in_order(37, 8, 0.1, false, |_, known| {
+        scan.sum_in_order(8, 0.1, false, |_, known| {
             assert!(known.iter().all(|&k| k == 1));
             [0.0; 3]
         });
         assert!(!scan.unchanged(5) && scan.unchanged(6));
         // … not to another threshold, nor to element means (every element marked
         // changed), nor after `forget`.
-        scan.sum_in_order(37, 8, 0.2, false, |_, known| {
+        scan.sum_in_order(8, 0.2, false, |_, known| {
             assert!(known.iter().all(|&k| k == 0));
             known.fill(5);
             [0.0; 3]
         });
         assert!(!scan.unchanged(6) && scan.unchanged(6));
-        scan.sum_in_order(37, 8, 0.2, true, |_, known| {
+        scan.sum_in_order(8, 0.2, true, |_, known| {
             assert!(known.iter().all(|&k| k == 0));
             [0.0; 3]
         });
         let mut forgetful = scan.clone();
         forgetful.forget();
         assert!(!forgetful.unchanged(7) && scan.changes().is_marked(7));
-        forgetful.sum_in_order(37, 8, 0.2, true, |_, known| {
+        forgetful.sum_in_order(8, 0.2, true, |_, known| {
             assert!(known.iter().all(|&k| k == 0));
             [0.0; 3]
         });

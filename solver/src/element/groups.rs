@@ -6,7 +6,7 @@ use rayon::prelude::*;
 
 use crate::element::colouring::BLOCK;
 use crate::element::damage_marks::DamageMarks;
-use crate::element::damage_scan::{DamageScan, KNOWN_POINTS};
+use crate::element::damage_scan::{add_in_order, DamageScan, KNOWN_POINTS};
 use crate::element::hex8_full::{self, FullGeometry};
 use crate::element::hex8_full_lanes;
 use crate::element::hex8_uniform::{self, UniformGeometry};
@@ -727,30 +727,22 @@ impl ElementGroup {
                     v
                 })
                 .collect();
-            return partial
-                .iter()
-                .fold([0.0; 3], |a, p| std::array::from_fn(|k| a[k] + p[k]));
+            return add_in_order(&partial);
         }
         // Kept answers only while passes commit in place (module docs of DamageScan).
         let reuse = self.states.is_in_place() && np <= KNOWN_POINTS;
         let scan = &self.damage_scan;
-        scan.sum_in_order(
-            self.len(),
-            DAMAGE_CHUNK,
-            threshold,
-            per_element,
-            |c, known| {
-                let mut v = [0.0; 3];
-                for (le, bits) in chunk_elements(c).zip(known.iter_mut()) {
-                    if visit(le) {
-                        // (`unchanged` clears the element's mark: `element` stores answers)
-                        let kept = scan.unchanged(le) && reuse;
-                        element(le, &mut v, bits, kept);
-                    }
+        scan.sum_in_order(DAMAGE_CHUNK, threshold, per_element, |c, known| {
+            let mut v = [0.0; 3];
+            for (le, bits) in chunk_elements(c).zip(known.iter_mut()) {
+                if visit(le) {
+                    // (`unchanged` clears the element's mark: `element` stores answers)
+                    let kept = scan.unchanged(le) && reuse;
+                    element(le, &mut v, bits, kept);
                 }
-                v
-            },
-        )
+            }
+            v
+        })
     }
 
     /// Elastic strain energy ½ ∫ ε : E0 : ε dV (+ hourglass energy ½ κ q²) of the group for

@@ -1164,18 +1164,36 @@ impl Kernel<'_> {
         let new_s =
             unsafe { std::slice::from_raw_parts_mut(self.states.new.add(range.start), stride) };
         let material = self.material;
-        if let (true, true, GroupGeometry::Full(g)) =
-            (self.states.in_place, self.lanes, &self.geometry)
-        {
-            let e0 = self.initial.map(|e0| &e0[8 * le..8 * le + 8]);
-            *fe = [[0.0; 3]; 8];
-            *fd = [[0.0; 3]; 8];
-            let moved = hex8_full_lanes::internal_force_in_place(
-                &g[le], material, &ue, e0, new_s, &ctx, fe,
-            );
-            self.damping(le, fd);
-            self.mark_damage(le, new_s, || moved);
-            return;
+        if self.states.in_place {
+            // The one-point kernel and the 8-point one in lanes update the states where
+            // they are.
+            let moved = match self.geometry {
+                GroupGeometry::Uniform(g) => {
+                    *fe = [[0.0; 3]; 8];
+                    *fd = [[0.0; 3]; 8];
+                    let e0 = self.initial.map(|e0| &e0[le]);
+                    let (_, moved) = hex8_uniform::internal_force_in_place(
+                        &g[le], material, &ue, e0, new_s, &ctx, fe,
+                    );
+                    self.damping_uniform(le, &g[le], fd);
+                    Some(moved)
+                }
+                GroupGeometry::Full(g) if self.lanes => {
+                    let e0 = self.initial.map(|e0| &e0[8 * le..8 * le + 8]);
+                    *fe = [[0.0; 3]; 8];
+                    *fd = [[0.0; 3]; 8];
+                    let moved = hex8_full_lanes::internal_force_in_place(
+                        &g[le], material, &ue, e0, new_s, &ctx, fe,
+                    );
+                    self.damping(le, fd);
+                    Some(moved)
+                }
+                GroupGeometry::Full(_) => None,
+            };
+            if let Some(moved) = moved {
+                self.mark_damage(le, new_s, || moved);
+                return;
+            }
         }
         let mut copy = std::mem::MaybeUninit::<[f64; MAX_ELEMENT_STATE]>::uninit();
         let old_s: &[f64] = if self.states.in_place {
@@ -1210,11 +1228,7 @@ impl Kernel<'_> {
                         fe,
                     ),
                 };
-                if self.beta > 0.0 {
-                    let nodes = &self.conn[le];
-                    let ve: [[f64; 3]; 8] = std::array::from_fn(|a| self.v[nodes[a] as usize]);
-                    damping_force_uniform(&g[le], material, &ve, self.beta, fd);
-                }
+                self.damping_uniform(le, &g[le], fd);
             }
             GroupGeometry::Full(g) => {
                 let e0 = self.initial.map(|e0| &e0[8 * le..8 * le + 8]);
@@ -1236,6 +1250,17 @@ impl Kernel<'_> {
                 .zip(new_s.chunks_exact(self.point_stride))
                 .any(|(o, n)| material.hardening_moved(o, n))
         });
+    }
+
+    /// Stiffness-proportional damping force `fd` of one-point element `le` (geometry
+    /// `g`), left as it is when β = 0.
+    #[inline(always)]
+    fn damping_uniform(&self, le: usize, g: &UniformGeometry, fd: &mut [[f64; 3]; 8]) {
+        if self.beta > 0.0 {
+            let nodes = &self.conn[le];
+            let ve: [[f64; 3]; 8] = std::array::from_fn(|a| self.v[nodes[a] as usize]);
+            damping_force_uniform(g, self.material, &ve, self.beta, fd);
+        }
     }
 
     /// Mark element `le`, whose new states are `new_s`, as one that may hold damage when a

@@ -261,18 +261,60 @@ pub fn internal_force_with_initial_strain(
     f: &mut [[f64; 3]; 8],
 ) -> Voigt {
     let (g, gu) = geo.gradient_and_modes(u);
-    let mut eps = strain_of(&g);
+    let eps = strain_with_initial(&g, eps0);
+    let sigma = material.update(&eps, old, new, ctx);
+    add_element_forces(geo, material, &g, &gu, &sigma, new, f);
+    sigma
+}
+
+/// [`internal_force_with_initial_strain`] with the element's material state updated in
+/// place ([`Material::update_in_place`]): the same forces and state bit for bit. Returns
+/// the stress and whether the hardening moved.
+#[inline(always)]
+pub fn internal_force_in_place(
+    geo: &UniformGeometry,
+    material: &Material,
+    u: &[[f64; 3]; 8],
+    eps0: Option<&Voigt>,
+    state: &mut [f64],
+    ctx: &PointContext,
+    f: &mut [[f64; 3]; 8],
+) -> (Voigt, bool) {
+    let (g, gu) = geo.gradient_and_modes(u);
+    let eps = strain_with_initial(&g, eps0);
+    let (sigma, moved) = material.update_in_place(&eps, state, ctx);
+    add_element_forces(geo, material, &g, &gu, &sigma, state, f);
+    (sigma, moved)
+}
+
+/// Strain of the mean gradient `g` plus the initial strain `eps0`, if any.
+#[inline(always)]
+fn strain_with_initial(g: &[[f64; 3]; 3], eps0: Option<&Voigt>) -> Voigt {
+    let mut eps = strain_of(g);
     if let Some(e0) = eps0 {
         for i in 0..6 {
             eps[i] += e0[i];
         }
     }
-    let sigma = material.update(&eps, old, new, ctx);
+    eps
+}
+
+/// Nodal forces V Bᵀσ plus the hourglass forces of stress `sigma` and the new material
+/// state `new`, for the mean gradient `g` and hourglass amplitudes `gu`.
+#[inline(always)]
+fn add_element_forces(
+    geo: &UniformGeometry,
+    material: &Material,
+    g: &[[f64; 3]; 3],
+    gu: &[[f64; 3]; 4],
+    sigma: &Voigt,
+    new: &[f64],
+    f: &mut [[f64; 3]; 8],
+) {
     // Hourglass stiffness of the damaged material: κ (1 − D), exactly κ when elastic.
     let kappa = geo.kappa * material.stiffness_factor(new);
-    let kq = geo.modes_from(&g, &gu).map(|r| r.map(|x| kappa * x));
-    geo.forces_kq(&sigma, &kq, f);
-    sigma
+    let kq = geo.modes_from(g, gu).map(|r| r.map(|x| kappa * x));
+    geo.forces_kq(sigma, &kq, f);
 }
 
 #[cfg(test)]
@@ -454,5 +496,72 @@ mod tests {
                 "elastic node {a}"
             );
         }
+    }
+
+    /// The kernel in place gives the buffered kernel's forces, stress and state bit for bit,
+    /// and says whether the hardening moved: random displacements from well inside the
+    /// elastic range to cracking, two steps (the second from the state the first left),
+    /// with and without an initial strain.
+    #[test]
+    fn in_place_is_the_buffered_kernel_bit_for_bit() {
+        use crate::material::plastic_damage::PlasticDamageParams;
+        use crate::material::PlasticDamage;
+        use crate::test_random::Lcg;
+        let x = distorted();
+        let el = Elastic::new("concrete", 30e9, 0.2, 2400.0).unwrap();
+        let pd = PlasticDamage::new(
+            "concrete",
+            el,
+            &PlasticDamageParams::from_strengths(3e6, 20e6, 30e6, 100.0, 10e3),
+        )
+        .unwrap();
+        let material = Material::PlasticDamage(Box::new(pd));
+        let geo = UniformGeometry::new(&x, &el, 0.05).unwrap();
+        let ctx = PointContext {
+            char_length: 0.5,
+            dt: 1e-4,
+        };
+        let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+        let mut rng = Lcg(0x1a2b_3c4d_0005);
+        let mut moved_seen = [false; 2];
+        for draw in 0..2000 {
+            let mag = 1e-6 * (3e3f64).powf(rng.next());
+            let u: [[f64; 3]; 8] =
+                std::array::from_fn(|_| [mag * rng.sym(), mag * rng.sym(), mag * rng.sym()]);
+            let e0: Voigt = std::array::from_fn(|_| 0.3 * mag * rng.sym());
+            let mut old = vec![0.0; material.state_len()];
+            material.init_state(&mut old);
+            for step in 0..2 {
+                let us = u.map(|ua| ua.map(|v| (1.0 + 0.5 * step as f64) * v));
+                let eps0 = (draw % 2 == 1).then_some(&e0);
+                let mut want = [[0.0; 3]; 8];
+                let mut want_state = vec![0.0; material.state_len()];
+                let want_sigma = internal_force_with_initial_strain(
+                    &geo,
+                    &material,
+                    &us,
+                    eps0,
+                    &old,
+                    &mut want_state,
+                    &ctx,
+                    &mut want,
+                );
+                let mut got = [[0.0; 3]; 8];
+                let mut state = old.clone();
+                let (sigma, moved) =
+                    internal_force_in_place(&geo, &material, &us, eps0, &mut state, &ctx, &mut got);
+                assert_eq!(
+                    bits(got.as_flattened()),
+                    bits(want.as_flattened()),
+                    "draw {draw}"
+                );
+                assert_eq!(bits(&sigma), bits(&want_sigma), "draw {draw}");
+                assert_eq!(bits(&state), bits(&want_state), "draw {draw}");
+                assert_eq!(moved, material.hardening_moved(&old, &want_state));
+                moved_seen[usize::from(moved)] = true;
+                old = want_state;
+            }
+        }
+        assert_eq!(moved_seen, [true, true]);
     }
 }

@@ -114,6 +114,22 @@ impl Material {
         }
     }
 
+    /// [`Material::update`] with the state updated in place (the committed state on
+    /// entry, the new one on return); second: whether the hardening moved
+    /// ([`Material::hardening_moved`] of the old and the new state).
+    #[inline]
+    pub fn update_in_place(
+        &self,
+        strain: &Voigt,
+        state: &mut [f64],
+        ctx: &PointContext,
+    ) -> (Voigt, bool) {
+        match self {
+            Material::Elastic(e) => (e.stress(strain), false),
+            Material::PlasticDamage(p) => p.update_in_place(strain, state, ctx),
+        }
+    }
+
     /// Stress implied by a strain and an already-updated state (for output: no state change).
     pub fn stress_from_state(&self, strain: &Voigt, state: &[f64]) -> Voigt {
         match self {

@@ -456,6 +456,16 @@ impl PlasticDamage {
         new: &mut [f64],
         l: f64,
     ) -> Option<Voigt> {
+        let eff = self.virgin_stress(strain, old, l)?;
+        new.copy_from_slice(old);
+        write_virgin_point(new, strain, &eff);
+        Some(eff)
+    }
+
+    /// The check of [`Self::virgin_elastic`] alone: σ̄ = E₀ : (ε − εᵖ) of the never-yielded
+    /// state `old` when it is inside the initial surface by the margin, else `None`.
+    #[inline]
+    fn virgin_stress(&self, strain: &Voigt, old: &[f64], l: f64) -> Option<Voigt> {
         let eff = self
             .elastic
             .stress(&sub(strain, &voigt(&old[slot::PLASTIC..])));
@@ -464,14 +474,36 @@ impl PlasticDamage {
             virgin_bound(&self.surface, t.law.f0, c.law.f0)
         });
         let bracket = virgin_bracket(&self.surface, beta, &eff);
-        if !(beta >= 0.0 && bracket <= limit) {
-            return None;
+        (beta >= 0.0 && bracket <= limit).then_some(eff)
+    }
+
+    /// [`Self::update`] with the state updated in place (`state`: the committed state on
+    /// entry, the new one on return): a point that takes the never-yielded shortcut has
+    /// only its strain, stress and D written (the rest is the old state already); any
+    /// other is copied to the stack as its old state first. The same stress and state as
+    /// [`Self::update`] bit for bit; second: whether the hardening moved
+    /// ([`Self::hardening_moved`] of the old and the new state).
+    #[inline]
+    pub fn update_in_place(
+        &self,
+        strain: &Voigt,
+        state: &mut [f64],
+        ctx: &PointContext,
+    ) -> (Voigt, bool) {
+        let state = &mut state[..slot::LEN];
+        if state[slot::Y_T] == 0.0
+            && state[slot::Y_C] == 0.0
+            && strain.iter().all(|v| v.is_finite())
+        {
+            if let Some(eff) = self.virgin_stress(strain, state, ctx.char_length.max(1e-12)) {
+                write_virgin_point(state, strain, &eff);
+                return (eff, false);
+            }
         }
-        new.copy_from_slice(old);
-        new[slot::STRAIN..slot::STRAIN + 6].copy_from_slice(strain);
-        new[slot::DAMAGE] = 0.0;
-        new[slot::STRESS..slot::STRESS + 6].copy_from_slice(&eff);
-        Some(eff)
+        let mut old = [0.0; slot::LEN];
+        old.copy_from_slice(state);
+        let sig = self.update(strain, &old, state, ctx);
+        (sig, self.hardening_moved(&old, state))
     }
 
     /// Nominal stress σ and the D of eq. (24) for effective stress `eff` and hardening
@@ -603,6 +635,15 @@ impl PlasticDamage {
         let sig = self.stress_from_state(strain, state);
         0.5 * dot(&sig, &sub(strain, &voigt(&state[slot::PLASTIC..])))
     }
+}
+
+/// What the never-yielded shortcut changes in a point state `n` whose other values are its
+/// old ones: the strain, D = 0 and the stress σ = σ̄ = `eff`.
+#[inline]
+fn write_virgin_point(n: &mut [f64], strain: &Voigt, eff: &Voigt) {
+    n[slot::STRAIN..slot::STRAIN + 6].copy_from_slice(strain);
+    n[slot::DAMAGE] = 0.0;
+    n[slot::STRESS..slot::STRESS + 6].copy_from_slice(eff);
 }
 
 #[inline]

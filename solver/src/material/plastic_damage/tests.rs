@@ -845,7 +845,8 @@ fn consistent_recovery_stays_close_to_the_uniaxial_laws() {
 
 /// The shortcut for never-yielded points (`virgin_elastic`) gives bit for bit what the
 /// return mapping gives, under both regularisations and recovery rules, with viscosity;
-/// it is taken for most elastic states and never for one that yields.
+/// it is taken for most elastic states and never for one that yields. The update in place
+/// gives the same stress and state, and says whether the hardening moved.
 #[test]
 fn virgin_elastic_shortcut_is_the_general_update_bit_for_bit() {
     // A fixed pseudo-random sequence (xorshift) of strain directions and sizes around the
@@ -877,6 +878,7 @@ fn virgin_elastic_shortcut_is_the_general_update_bit_for_bit() {
         )
         .unwrap();
         let (mut shortcut, mut general) = (0, 0);
+        let mut moved_seen = [false; 2];
         for _ in 0..4000 {
             let size = 6e-4 * uniform().abs();
             let mut old = vec![0.0; m.state_len()];
@@ -902,6 +904,21 @@ fn virgin_elastic_shortcut_is_the_general_update_bit_for_bit() {
                 "{reg:?} {rec:?}: stress at {strain:?}"
             );
             assert_eq!(bits(&a), bits(&b), "{reg:?} {rec:?}: state at {strain:?}");
+            // In place: the same stress and state, and whether the hardening moved.
+            let mut in_place = old.clone();
+            let (si, moved) = m.update_in_place(&strain, &mut in_place, &ctx);
+            assert_eq!(
+                bits(&si),
+                bits(&sa),
+                "{reg:?} {rec:?}: in place at {strain:?}"
+            );
+            assert_eq!(
+                bits(&in_place),
+                bits(&a),
+                "{reg:?} {rec:?}: in place at {strain:?}"
+            );
+            assert_eq!(moved, m.hardening_moved(&old, &a));
+            moved_seen[usize::from(moved)] = true;
             let mut c = vec![0.0; m.state_len()];
             if m.virgin_elastic(&strain, &old, &mut c, ctx.char_length)
                 .is_some()
@@ -914,6 +931,7 @@ fn virgin_elastic_shortcut_is_the_general_update_bit_for_bit() {
             }
         }
         // Both paths exercised: the draws straddle the initial surface.
+        assert_eq!(moved_seen, [true, true], "{reg:?} {rec:?}");
         assert!(
             shortcut > 1000 && general > 500,
             "{reg:?} {rec:?}: {shortcut} / {general}"

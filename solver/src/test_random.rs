@@ -20,3 +20,19 @@ impl Lcg {
         2.0 * self.next() - 1.0
     }
 }
+
+/// The unit tests' cracking concrete: E₀ 30 GPa, ν 0.2, ρ 2400 kg/m³, f_t0 3 MPa,
+/// f_c0 20 MPa, f_cu 30 MPa, G_t 100 J/m², G_c 10 kJ/m² (cracks at ε ≈ 1e-4), with its
+/// elastic part.
+pub fn cracking_concrete() -> (crate::material::Material, crate::material::Elastic) {
+    use crate::material::plastic_damage::PlasticDamageParams;
+    use crate::material::{Elastic, Material, PlasticDamage};
+    let el = Elastic::new("concrete", 30e9, 0.2, 2400.0).expect("valid elastic constants");
+    let pd = PlasticDamage::new(
+        "concrete",
+        el,
+        &PlasticDamageParams::from_strengths(3e6, 20e6, 30e6, 100.0, 10e3),
+    )
+    .expect("valid plastic-damage constants");
+    (Material::PlasticDamage(Box::new(pd)), el)
+}

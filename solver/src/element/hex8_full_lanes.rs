@@ -234,11 +234,10 @@ mod tests {
     use super::*;
     use crate::element::hex8_full::internal_force_with_initial_strain;
     use crate::element::lanes::run_lane_work;
-    use crate::material::plastic_damage::PlasticDamageParams;
-    use crate::material::{Elastic, PlasticDamage};
+    use crate::material::Elastic;
     use crate::mesh::hex8_shape::NODE_XI;
 
-    use crate::test_random::Lcg;
+    use crate::test_random::{cracking_concrete, Lcg};
 
     /// A randomly stretched, sheared and distorted hex8 (corners moved by up to 15 % of
     /// the edge) and random displacements of magnitude `mag`.
@@ -453,19 +452,9 @@ mod tests {
     fn lanes_give_the_scalar_forces_and_states_bit_for_bit_for_plastic_damage() {
         // Displacements from well inside the elastic range to cracking and crushing
         // (ε_t0 ≈ 1e-4 on ≈ 1 m elements).
-        let el = Elastic::new("concrete", 30e9, 0.2, 2400.0).unwrap();
-        let pd = PlasticDamage::new(
-            "concrete",
-            el,
-            &PlasticDamageParams::from_strengths(3e6, 20e6, 30e6, 100.0, 10e3),
-        )
-        .unwrap();
-        let (damaged, intact, moved_seen) = compare(
-            &Material::PlasticDamage(Box::new(pd)),
-            (1e-6, 3e-3),
-            300,
-            0x0dd_ba11_cafe_0002,
-        );
+        let (material, _) = cracking_concrete();
+        let (damaged, intact, moved_seen) =
+            compare(&material, (1e-6, 3e-3), 300, 0x0dd_ba11_cafe_0002);
         // Both the never-yielded shortcut and the return mapping are exercised, and the
         // in-place kernel saw elements whose hardening moved and elements whose did not.
         assert!(

@@ -504,18 +504,9 @@ mod tests {
     /// with and without an initial strain.
     #[test]
     fn in_place_is_the_buffered_kernel_bit_for_bit() {
-        use crate::material::plastic_damage::PlasticDamageParams;
-        use crate::material::PlasticDamage;
-        use crate::test_random::Lcg;
+        use crate::test_random::{cracking_concrete, Lcg};
         let x = distorted();
-        let el = Elastic::new("concrete", 30e9, 0.2, 2400.0).unwrap();
-        let pd = PlasticDamage::new(
-            "concrete",
-            el,
-            &PlasticDamageParams::from_strengths(3e6, 20e6, 30e6, 100.0, 10e3),
-        )
-        .unwrap();
-        let material = Material::PlasticDamage(Box::new(pd));
+        let (material, el) = cracking_concrete();
         let geo = UniformGeometry::new(&x, &el, 0.05).unwrap();
         let ctx = PointContext {
             char_length: 0.5,

@@ -117,7 +117,7 @@ impl Material {
     /// [`Material::update`] with the state updated in place (the committed state on
     /// entry, the new one on return); second: whether the hardening moved
     /// ([`Material::hardening_moved`] of the old and the new state).
-    #[inline]
+    #[inline(always)]
     pub fn update_in_place(
         &self,
         strain: &Voigt,

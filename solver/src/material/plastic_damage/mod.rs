@@ -464,17 +464,25 @@ impl PlasticDamage {
 
     /// The check of [`Self::virgin_elastic`] alone: σ̄ = E₀ : (ε − εᵖ) of the never-yielded
     /// state `old` when it is inside the initial surface by the margin, else `None`.
-    #[inline]
+    #[inline(always)]
     fn virgin_stress(&self, strain: &Voigt, old: &[f64], l: f64) -> Option<Voigt> {
         let eff = self
             .elastic
             .stress(&sub(strain, &voigt(&old[slot::PLASTIC..])));
-        let (beta, limit) = self.virgin_bound.unwrap_or_else(|| {
-            let (t, c) = self.element_laws(l);
-            virgin_bound(&self.surface, t.law.f0, c.law.f0)
-        });
+        let (beta, limit) = self.virgin_bound_for(l);
         let bracket = virgin_bracket(&self.surface, beta, &eff);
         (beta >= 0.0 && bracket <= limit).then_some(eff)
+    }
+
+    /// (β, limit) of the never-yielded check for an element of characteristic length `l`
+    /// ([`virgin_bound`] of its strengths; the same for every length under
+    /// [`Regularisation::Plastic`]).
+    #[inline(always)]
+    fn virgin_bound_for(&self, l: f64) -> (f64, f64) {
+        self.virgin_bound.unwrap_or_else(|| {
+            let (t, c) = self.element_laws(l);
+            virgin_bound(&self.surface, t.law.f0, c.law.f0)
+        })
     }
 
     /// [`Self::update`] with the state updated in place (`state`: the committed state on
@@ -482,8 +490,10 @@ impl PlasticDamage {
     /// only its strain, stress and D written (the rest is the old state already); any
     /// other is copied to the stack as its old state first. The same stress and state as
     /// [`Self::update`] bit for bit; second: whether the hardening moved
-    /// ([`Self::hardening_moved`] of the old and the new state).
-    #[inline]
+    /// ([`Self::hardening_moved`] of the old and the new state). Inlined whole, so that
+    /// the shortcut is compiled for the instruction set of the dispatched element kernel
+    /// that calls it (out of line it ran as baseline SSE2 code).
+    #[inline(always)]
     pub fn update_in_place(
         &self,
         strain: &Voigt,
@@ -500,6 +510,19 @@ impl PlasticDamage {
                 return (eff, false);
             }
         }
+        self.update_general_in_place(strain, state, ctx)
+    }
+
+    /// [`Self::update`] of a point whose state `state` is updated in place, the committed
+    /// state copied to the stack first (the general path of [`Self::update_in_place`] and
+    /// of the lane updates); second: whether the hardening moved.
+    #[inline(always)]
+    fn update_general_in_place(
+        &self,
+        strain: &Voigt,
+        state: &mut [f64],
+        ctx: &PointContext,
+    ) -> (Voigt, bool) {
         let mut old = [0.0; slot::LEN];
         old.copy_from_slice(state);
         let sig = self.update(strain, &old, state, ctx);

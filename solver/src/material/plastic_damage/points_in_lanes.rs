@@ -6,7 +6,7 @@
 //! are those of eight calls of [`PlasticDamage::update`] bit for bit (tested in
 //! `element::hex8_full_lanes`).
 
-use super::{slot, virgin_bound, virgin_bracket, PlasticDamage};
+use super::{slot, virgin_bracket, PlasticDamage};
 use crate::element::lanes::{elastic_stress, F64s, VoigtLanes, LANES};
 use crate::material::{PointContext, Voigt};
 
@@ -44,11 +44,7 @@ impl PlasticDamage {
         let trial: VoigtLanes = std::array::from_fn(|i| strain[i] - plastic[i]);
         let eff = elastic_stress(el.lambda, el.mu, &trial);
         let pass = if candidate.iter().any(|&c| c) {
-            let l = ctx.char_length.max(1e-12);
-            let (beta, limit) = self.virgin_bound.unwrap_or_else(|| {
-                let (t, c) = self.element_laws(l);
-                virgin_bound(&self.surface, t.law.f0, c.law.f0)
-            });
+            let (beta, limit) = self.virgin_bound_for(ctx.char_length.max(1e-12));
             let bracket = virgin_bracket(&self.surface, beta, &eff);
             std::array::from_fn(|g| candidate[g] && beta >= 0.0 && bracket[g] <= limit)
         } else {
@@ -117,11 +113,9 @@ impl PlasticDamage {
                     sigma[i][g] = eff[i][g];
                 }
             } else {
-                let mut o = [0.0; N];
-                o.copy_from_slice(n);
                 let point: Voigt = std::array::from_fn(|i| strain[i][g]);
-                let s = self.update(&point, &o, n, ctx);
-                moved |= self.hardening_moved(&o, n);
+                let (s, m) = self.update_general_in_place(&point, n, ctx);
+                moved |= m;
                 for i in 0..6 {
                     sigma[i][g] = s[i];
                 }

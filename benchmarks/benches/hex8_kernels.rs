@@ -5,7 +5,10 @@
 //! - `full_lanes`: the same with the eight Gauss points in SIMD lanes
 //!   (`hex8_full_lanes::internal_force` through `InternalForce`, dispatched like the step);
 //! - `hex8_full_plastic_damage/{scalar,lanes}`: both with the plastic-damage model below
-//!   first yield (the never-yielded shortcut, checked in lanes by the lane kernel).
+//!   first yield (the never-yielded shortcut, checked in lanes by the lane kernel);
+//! - `hex8_one_point_plastic_damage/in_place`: the one-point kernel with the plastic-damage
+//!   model below first yield, its state updated in place, dispatched like the step (the
+//!   Yingxiuwan rock's kernel).
 //!
 //! `*/single` runs one element whose data stays in L1 (pure arithmetic cost);
 //! `*/stream_64000` sweeps the geometry of 64 000 distinct elements (the 40³ cube's working
@@ -22,7 +25,7 @@ use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use dcfm::element::hex8_full::{self, FullGeometry};
 use dcfm::element::hex8_full_lanes::InternalForce;
 use dcfm::element::hex8_uniform::{self, UniformGeometry};
-use dcfm::element::lanes::run_lane_work;
+use dcfm::element::lanes::{run_lane_work, LaneWork};
 use dcfm::material::plastic_damage::PlasticDamageParams;
 use dcfm::material::{Elastic, Material, PlasticDamage, PointContext};
 
@@ -265,5 +268,77 @@ fn full_lanes(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, one_point, full, full_lanes);
+/// One one-point plastic-damage element below first yield, its state updated in place
+/// (`hex8_uniform::internal_force_in_place`), as the step runs it: inside pulp's dispatch.
+struct OnePointInPlace<'a> {
+    geo: &'a UniformGeometry,
+    material: &'a Material,
+    u: &'a [[f64; 3]; 8],
+    state: &'a mut [f64],
+    ctx: &'a PointContext,
+    f: &'a mut [[f64; 3]; 8],
+}
+
+impl LaneWork for OnePointInPlace<'_> {
+    type Output = bool;
+    #[inline(always)]
+    fn run(self) -> bool {
+        hex8_uniform::internal_force_in_place(
+            self.geo,
+            self.material,
+            self.u,
+            None,
+            self.state,
+            self.ctx,
+            self.f,
+        )
+        .1
+    }
+}
+
+/// `hex8_one_point_plastic_damage/in_place`: the rock's kernel on the Yingxiuwan mesh (a
+/// one-point plastic-damage element that has never yielded, the never-yielded shortcut),
+/// one element whose data stays in L1.
+fn one_point_plastic_damage(c: &mut Criterion) {
+    let ctx = context();
+    let x = coords(0.0);
+    let u = displacements(&x);
+    let elastic = material();
+    let mat = Material::PlasticDamage(Box::new(
+        PlasticDamage::new(
+            "rock",
+            *elastic.elastic(),
+            &PlasticDamageParams::from_strengths(2.9e6, 13e6, 24.1e6, 100.0, 10e3),
+        )
+        .expect("valid plastic-damage parameters"),
+    ));
+    let geo = UniformGeometry::new(&x, mat.elastic(), 0.05).expect("valid element");
+    let mut state = vec![0.0; mat.state_len()];
+    mat.init_state(&mut state);
+    let mut group = c.benchmark_group("hex8_one_point_plastic_damage");
+    group.throughput(Throughput::Elements(1));
+    group.bench_function("in_place", |b| {
+        let mut f = [[0.0; 3]; 8];
+        b.iter(|| {
+            let moved = run_lane_work(OnePointInPlace {
+                geo: black_box(&geo),
+                material: &mat,
+                u: black_box(&u),
+                state: &mut state,
+                ctx: &ctx,
+                f: &mut f,
+            });
+            black_box((&f, moved));
+        })
+    });
+    group.finish();
+}
+
+criterion_group!(
+    benches,
+    one_point,
+    full,
+    full_lanes,
+    one_point_plastic_damage
+);
 criterion_main!(benches);

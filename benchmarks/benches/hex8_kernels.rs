@@ -60,6 +60,19 @@ fn material() -> Material {
     Material::Elastic(Elastic::new("rock", 20e9, 0.25, 2700.0).expect("valid elastic constants"))
 }
 
+/// [`material`]'s elastic constants with plastic damage (f_t0 2.9 MPa, f_c0 13 MPa,
+/// f_cu 24.1 MPa, G_t 100 J/m², G_c 10 kJ/m²).
+fn plastic_damage() -> Material {
+    Material::PlasticDamage(Box::new(
+        PlasticDamage::new(
+            "concrete",
+            *material().elastic(),
+            &PlasticDamageParams::from_strengths(2.9e6, 13e6, 24.1e6, 100.0, 10e3),
+        )
+        .expect("valid plastic-damage parameters"),
+    ))
+}
+
 /// The update context of the 0.25 m elements.
 fn context() -> PointContext {
     PointContext {
@@ -208,14 +221,7 @@ fn full_lanes(c: &mut Criterion) {
     let geo = FullGeometry::new(&x).expect("valid element");
     let u = displacements(&x);
     let elastic = material();
-    let plastic = Material::PlasticDamage(Box::new(
-        PlasticDamage::new(
-            "concrete",
-            *elastic.elastic(),
-            &PlasticDamageParams::from_strengths(2.9e6, 13e6, 24.1e6, 100.0, 10e3),
-        )
-        .expect("valid plastic-damage parameters"),
-    ));
+    let plastic = plastic_damage();
     for (name, mat) in [
         ("hex8_full", &elastic),
         ("hex8_full_plastic_damage", &plastic),
@@ -303,15 +309,7 @@ fn one_point_plastic_damage(c: &mut Criterion) {
     let ctx = context();
     let x = coords(0.0);
     let u = displacements(&x);
-    let elastic = material();
-    let mat = Material::PlasticDamage(Box::new(
-        PlasticDamage::new(
-            "rock",
-            *elastic.elastic(),
-            &PlasticDamageParams::from_strengths(2.9e6, 13e6, 24.1e6, 100.0, 10e3),
-        )
-        .expect("valid plastic-damage parameters"),
-    ));
+    let mat = plastic_damage();
     let geo = UniformGeometry::new(&x, mat.elastic(), 0.05).expect("valid element");
     let mut state = vec![0.0; mat.state_len()];
     mat.init_state(&mut state);

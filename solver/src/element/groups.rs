@@ -1164,13 +1164,13 @@ impl Kernel<'_> {
         let new_s =
             unsafe { std::slice::from_raw_parts_mut(self.states.new.add(range.start), stride) };
         let material = self.material;
+        *fe = [[0.0; 3]; 8];
+        *fd = [[0.0; 3]; 8];
         if self.states.in_place {
             // The one-point kernel and the 8-point one in lanes update the states where
             // they are.
             let moved = match self.geometry {
                 GroupGeometry::Uniform(g) => {
-                    *fe = [[0.0; 3]; 8];
-                    *fd = [[0.0; 3]; 8];
                     let e0 = self.initial.map(|e0| &e0[le]);
                     let (_, moved) = hex8_uniform::internal_force_in_place(
                         &g[le], material, &ue, e0, new_s, &ctx, fe,
@@ -1180,8 +1180,6 @@ impl Kernel<'_> {
                 }
                 GroupGeometry::Full(g) if self.lanes => {
                     let e0 = self.initial.map(|e0| &e0[8 * le..8 * le + 8]);
-                    *fe = [[0.0; 3]; 8];
-                    *fd = [[0.0; 3]; 8];
                     let moved = hex8_full_lanes::internal_force_in_place(
                         &g[le], material, &ue, e0, new_s, &ctx, fe,
                     );
@@ -1209,8 +1207,6 @@ impl Kernel<'_> {
         } else {
             unsafe { std::slice::from_raw_parts(self.states.old.add(range.start), stride) }
         };
-        *fe = [[0.0; 3]; 8];
-        *fd = [[0.0; 3]; 8];
         match self.geometry {
             GroupGeometry::Uniform(g) => {
                 match self.initial {

@@ -10,7 +10,8 @@ use crate::element::damage_scan::{add_in_order, DamageScan, KNOWN_POINTS};
 use crate::element::hex8_full::{self, FullGeometry};
 use crate::element::hex8_full_lanes;
 use crate::element::hex8_uniform::{self, UniformGeometry};
-use crate::element::lanes::{self, LaneWork};
+use crate::element::hex8_uniform_lanes::{self, UniformBlock, UniformSet};
+use crate::element::lanes::{self, LaneWork, LANES};
 use crate::element::stable_step::characteristic_length;
 use crate::element::Integration;
 use crate::error::{DcfmError, Result};
@@ -26,8 +27,9 @@ const FORCE_CHUNK: usize = 16;
 /// Precomputed geometry of a group's elements.
 #[derive(Clone, Debug)]
 pub enum GroupGeometry {
-    /// One-point elements.
-    Uniform(Vec<UniformGeometry>),
+    /// One-point elements (element by element, and in lane blocks for
+    /// [`hex8_uniform_lanes`]).
+    Uniform(UniformSet),
     /// Fully integrated elements.
     Full(Vec<FullGeometry>),
 }
@@ -79,10 +81,13 @@ pub struct ElementGroup {
     /// u − u_ref, so that an element activated in a deformed configuration starts
     /// stress-free there (the static stage's activation); `None` for groups without one.
     pub reference: Option<Vec<[[f64; 3]; 8]>>,
-    /// Compute the forces of fully integrated elements with their eight Gauss points in
-    /// SIMD lanes ([`hex8_full_lanes`], bit-identical to the scalar kernel, compiled for
-    /// the best instruction set of the CPU); `true` by default. `false` runs the scalar
-    /// kernel of [`hex8_full`], the reference the tests compare with.
+    /// Compute the forces in SIMD lanes, bit-identical to the scalar kernels and compiled
+    /// for the best instruction set of the CPU: fully integrated elements with their eight
+    /// Gauss points in lanes ([`hex8_full_lanes`]), linear elastic one-point elements eight
+    /// at a time ([`hex8_uniform_lanes`], in the dynamic stage's in-place passes); `true`
+    /// by default.
+    /// `false` runs the scalar kernels of [`hex8_full`] and [`hex8_uniform`], the
+    /// reference the tests compare with.
     pub lanes: bool,
     /// The two-phase force pass ([`add_internal_forces`]): every element's forces computed
     /// in parallel element by element into these buffers, then added to the nodes run by
@@ -297,7 +302,7 @@ impl ElementGroup {
                     volume.push(geo.volume);
                     g.push(geo);
                 }
-                GroupGeometry::Uniform(g)
+                GroupGeometry::Uniform(g.into())
             }
             Integration::Full => {
                 let mut g = Vec::with_capacity(elements.len());
@@ -1060,13 +1065,13 @@ struct Kernel<'k> {
     /// Marked here when an element's hardening variables moved ([`DamageScan`]).
     changes: &'k DamageMarks,
     beta: f64,
-    /// Fully integrated elements through [`hex8_full_lanes`] (else [`hex8_full`]).
+    /// Kernels in lanes ([`ElementGroup::lanes`]).
     lanes: bool,
     u: &'k [[f64; 3]],
     v: &'k [[f64; 3]],
 }
 
-impl Kernel<'_> {
+impl<'k> Kernel<'k> {
     /// Nodal displacements of element `le` (less its reference displacements).
     #[inline(always)]
     fn displacements(&self, le: usize) -> [[f64; 3]; 8] {
@@ -1109,11 +1114,30 @@ impl Kernel<'_> {
         out: &mut [[[f64; 3]; 8]],
         damping: SharedMut<[[f64; 3]; 8]>,
     ) {
-        for (i, fe) in out.iter_mut().enumerate() {
+        let mut i = 0;
+        while i < out.len() {
             let le = first + i;
+            if let Some((block, dts)) = self.lane_block(settings, le, out.len() - i) {
+                let fe: &mut [[[f64; 3]; 8]; LANES] = (&mut out[i..i + LANES])
+                    .try_into()
+                    .expect("a lane block of elements");
+                self.uniform_lane_forces(block, le, &dts, fe);
+                if self.beta > 0.0 {
+                    for l in 0..LANES {
+                        let mut fd = [[0.0; 3]; 8];
+                        self.damping_uniform_of(le + l, &mut fd);
+                        // SAFETY: element le + l's entry, written by this call alone.
+                        unsafe { *damping.at(le + l) = fd };
+                    }
+                }
+                i += LANES;
+                continue;
+            }
+            i += 1;
             let Some(dt) = settings.element_dt(le) else {
                 continue;
             };
+            let fe = &mut out[le - first];
             let mut fd = [[0.0; 3]; 8];
             self.forces(le, dt, fe, &mut fd);
             if self.beta > 0.0 {
@@ -1133,13 +1157,132 @@ impl Kernel<'_> {
         run: std::ops::Range<usize>,
         add: &impl Fn(&[u32; 8], &[[f64; 3]; 8], &[[f64; 3]; 8]),
     ) {
-        for le in run {
+        let mut le = run.start;
+        while le < run.end {
+            if let Some((block, dts)) = self.lane_block(settings, le, run.end - le) {
+                let mut fe = [[[0.0; 3]; 8]; LANES];
+                self.uniform_lane_forces(block, le, &dts, &mut fe);
+                for (l, fe) in fe.iter().enumerate() {
+                    let mut fd = [[0.0; 3]; 8];
+                    self.damping_uniform_of(le + l, &mut fd);
+                    add(&self.conn[le + l], fe, &fd);
+                }
+                le += LANES;
+                continue;
+            }
             if let Some(dt) = settings.element_dt(le) {
                 let mut fe = [[0.0; 3]; 8];
                 let mut fd = [[0.0; 3]; 8];
                 self.forces(le, dt, &mut fe, &mut fd);
                 add(&self.conn[le], &fe, &fd);
             }
+            le += 1;
+        }
+    }
+
+    /// The lane block of one-point elements that starts at element `le`, with the steps
+    /// of its elements, when the pass runs them in lanes: lanes on, a linear elastic
+    /// material, states in place, `le` the first element of a block of
+    /// [`UniformSet::blocks`], the whole block among the `remaining` elements of the
+    /// caller's range, and every element of it due.
+    ///
+    /// Plastic-damage one-point elements stay scalar: in lanes (tested bit for bit, the
+    /// kernel alone 2.5× faster per element in L1) the 40³ cube's elastic regime ran
+    /// slower in the step (5.3–5.9e6 against 7.1e6 element-updates/s on one thread): the
+    /// eight states' never-yielded check waits on the whole block's arithmetic, where the
+    /// scalar kernel overlaps consecutive elements (docs/benchmarks.md, 2026-11-28).
+    #[inline(always)]
+    fn lane_block(
+        &self,
+        settings: &ForceSettings<'_>,
+        le: usize,
+        remaining: usize,
+    ) -> Option<(&'k UniformBlock, [f64; LANES])> {
+        let GroupGeometry::Uniform(g) = self.geometry else {
+            return None;
+        };
+        if !self.lanes
+            || !matches!(self.material, Material::Elastic(_))
+            || !self.states.in_place
+            || !le.is_multiple_of(LANES)
+            || remaining < LANES
+        {
+            return None;
+        }
+        let block = g.blocks().get(le / LANES)?;
+        let mut dts = [0.0; LANES];
+        for (l, dt) in dts.iter_mut().enumerate() {
+            *dt = settings.element_dt(le + l)?;
+        }
+        Some((block, dts))
+    }
+
+    /// Internal forces `fe` of the eight one-point elements `first..first + 8` (lane block
+    /// `block`, steps `dts`) in lanes, their states updated in place and their damage
+    /// marked: [`Kernel::forces`] of each, bit for bit ([`hex8_uniform_lanes`]).
+    #[inline(always)]
+    fn uniform_lane_forces(
+        &self,
+        block: &UniformBlock,
+        first: usize,
+        dts: &[f64; LANES],
+        fe: &mut [[[f64; 3]; 8]; LANES],
+    ) {
+        let conn: &[[u32; 8]; LANES] = self.conn[first..first + LANES]
+            .try_into()
+            .expect("a lane block of elements");
+        let reference = self.reference.map(|r| {
+            <&[[[f64; 3]; 8]; LANES]>::try_from(&r[first..first + LANES])
+                .expect("a lane block of elements")
+        });
+        let mut u = hex8_uniform_lanes::gather_relative(self.u, conn, reference);
+        // An optimisation barrier: the gathered vectors are stored whole and read back as
+        // vectors. Without it the compiler carried them as 8 × 24 scalars and vectorised
+        // the kernel's arithmetic only partly (2.5× slower than with vectors, measured).
+        std::hint::black_box(&mut u);
+        let eps0 = self.initial.map(|e0| {
+            hex8_uniform_lanes::voigt_lanes(
+                e0[first..first + LANES]
+                    .try_into()
+                    .expect("a lane block of elements"),
+            )
+        });
+        let ctx: [PointContext; LANES] = std::array::from_fn(|l| PointContext {
+            char_length: self.lengths[first + l],
+            dt: dts[l],
+        });
+        let stride = self.stride;
+        assert!(
+            (first + LANES) * stride <= self.states.len,
+            "state slices of elements {first}.. out of bounds"
+        );
+        // SAFETY: each element owns the state slice of its index, and every pass evaluates
+        // an element at most once.
+        let mut states: [&mut [f64]; LANES] = std::array::from_fn(|l| unsafe {
+            std::slice::from_raw_parts_mut(self.states.new.add((first + l) * stride), stride)
+        });
+        let (f, moved) = lanes::run_lane_work(hex8_uniform_lanes::LaneKernel {
+            block,
+            material: self.material,
+            u: &u,
+            eps0: eps0.as_ref(),
+            states: &mut states,
+            ctx: &ctx,
+        });
+        seq_macro::seq!(L in 0..8 {
+            hex8_uniform_lanes::write_lane(&f, L, &mut fe[L]);
+        });
+        for (l, state) in states.iter().enumerate() {
+            self.mark_damage(first + l, state, || moved[l]);
+        }
+    }
+
+    /// [`Kernel::damping_uniform`] of one-point element `le` (`fd` left as it is when
+    /// β = 0 or the group is not one-point).
+    #[inline(always)]
+    fn damping_uniform_of(&self, le: usize, fd: &mut [[f64; 3]; 8]) {
+        if let GroupGeometry::Uniform(g) = self.geometry {
+            self.damping_uniform(le, &g[le], fd);
         }
     }
 

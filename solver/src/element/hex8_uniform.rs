@@ -28,7 +28,9 @@
 //! for the strain and the hourglass modes, and Γ (entries ±1) costs only additions.
 
 use crate::element::hex8_shape::{cartesian_derivatives, gauss_points, NODE_XI};
+use crate::element::lanes::Lane;
 use crate::material::{Elastic, Material, PointContext, Voigt};
+use seq_macro::seq;
 
 /// Hourglass base vectors Γ_α (α = ηζ, ζξ, ξη, ξηζ) at the nodes, as a constant
 /// (equal to [`hourglass_base`], tested).
@@ -115,30 +117,13 @@ impl UniformGeometry {
     /// Mean displacement gradient G_ij = Σ_a u_ai b_aj and (Γu)_αi.
     #[inline(always)]
     pub fn gradient_and_modes(&self, u: &[[f64; 3]; 8]) -> GradientAndModes {
-        let mut g = [[0.0; 3]; 3];
-        let mut gu = [[0.0; 3]; 4];
-        for a in 0..8 {
-            for i in 0..3 {
-                for j in 0..3 {
-                    g[i][j] += u[a][i] * self.b[a][j];
-                }
-                for al in 0..4 {
-                    gu[al][i] += GAMMA[al][a] * u[a][i];
-                }
-            }
-        }
-        (g, gu)
+        gradient_and_modes_of(&self.b, u)
     }
 
     /// Hourglass modes q_αi = (Γu)_αi − Σ_j h_αj G_ij from G and Γu.
     #[inline(always)]
     fn modes_from(&self, g: &[[f64; 3]; 3], gu: &[[f64; 3]; 4]) -> [[f64; 3]; 4] {
-        std::array::from_fn(|al| {
-            std::array::from_fn(|i| {
-                gu[al][i]
-                    - (self.h[al][0] * g[i][0] + self.h[al][1] * g[i][1] + self.h[al][2] * g[i][2])
-            })
-        })
+        modes_from_of(&self.h, g, gu)
     }
 
     /// Strain ε = Σ_a B_a u_a (Voigt, engineering shear).
@@ -172,29 +157,7 @@ impl UniformGeometry {
     /// Nodal forces from σ and κq: f_ai = Σ_j b_aj P_ij + Σ_α Γ_αa (κq)_αi.
     #[inline(always)]
     fn forces_kq(&self, s: &Voigt, kq: &[[f64; 3]; 4], f: &mut [[f64; 3]; 8]) {
-        let v = self.volume;
-        let sig = [[s[0], s[3], s[5]], [s[3], s[1], s[4]], [s[5], s[4], s[2]]];
-        let mut p = [[0.0; 3]; 3];
-        for i in 0..3 {
-            for j in 0..3 {
-                p[i][j] = v * sig[i][j]
-                    - (self.h[0][j] * kq[0][i]
-                        + self.h[1][j] * kq[1][i]
-                        + self.h[2][j] * kq[2][i]
-                        + self.h[3][j] * kq[3][i]);
-            }
-        }
-        for a in 0..8 {
-            for i in 0..3 {
-                f[a][i] = self.b[a][0] * p[i][0]
-                    + self.b[a][1] * p[i][1]
-                    + self.b[a][2] * p[i][2]
-                    + GAMMA[0][a] * kq[0][i]
-                    + GAMMA[1][a] * kq[1][i]
-                    + GAMMA[2][a] * kq[2][i]
-                    + GAMMA[3][a] * kq[3][i];
-            }
-        }
+        *f = forces_kq_of(&self.b, &self.h, self.volume, s, kq);
     }
 
     /// Stiffness-proportional damping force β K0 v (initial elastic stiffness, hourglass
@@ -216,9 +179,92 @@ impl UniformGeometry {
     }
 }
 
-/// Voigt strain (engineering shear) of a displacement gradient.
+/// Mean displacement gradient G_ij = Σ_a u_ai b_aj and (Γu)_αi of the mean gradient `b`,
+/// for one element (`f64`) or one element per lane ([`F64s`](crate::element::lanes::F64s)):
+/// the same IEEE operations in the same order either way.
+///
+/// The loops over nodes and components are unrolled in the source (`seq!`): with lanes, a
+/// loop left to the compiler was vectorised across the nodes with gathers and scatters
+/// instead of across the lanes (measured, docs/benchmarks.md), and `array::from_fn`
+/// closures holding vector arithmetic were left out of line.
 #[inline(always)]
-fn strain_of(g: &[[f64; 3]; 3]) -> Voigt {
+pub(crate) fn gradient_and_modes_of<T: Lane>(
+    b: &[[T; 3]; 8],
+    u: &[[T; 3]; 8],
+) -> ([[T; 3]; 3], [[T; 3]; 4]) {
+    let zero = T::splat(0.0);
+    let mut g = [[zero; 3]; 3];
+    let mut gu = [[zero; 3]; 4];
+    seq!(A in 0..8 {
+        seq!(I in 0..3 {
+            seq!(J in 0..3 {
+                g[I][J] = g[I][J] + u[A][I] * b[A][J];
+            });
+            seq!(AL in 0..4 {
+                gu[AL][I] = gu[AL][I] + T::splat(GAMMA[AL][A]) * u[A][I];
+            });
+        });
+    });
+    (g, gu)
+}
+
+/// Hourglass modes q_αi = (Γu)_αi − Σ_j h_αj G_ij from G and Γu (generic and unrolled like
+/// [`gradient_and_modes_of`]).
+#[inline(always)]
+pub(crate) fn modes_from_of<T: Lane>(
+    h: &[[T; 3]; 4],
+    g: &[[T; 3]; 3],
+    gu: &[[T; 3]; 4],
+) -> [[T; 3]; 4] {
+    let mut q = [[T::splat(0.0); 3]; 4];
+    seq!(AL in 0..4 {
+        seq!(I in 0..3 {
+            q[AL][I] =
+                gu[AL][I] - (h[AL][0] * g[I][0] + h[AL][1] * g[I][1] + h[AL][2] * g[I][2]);
+        });
+    });
+    q
+}
+
+/// Nodal forces from σ and κq: f_ai = Σ_j b_aj P_ij + Σ_α Γ_αa (κq)_αi with
+/// P_ij = V σ_ij − Σ_α h_αj (κq)_αi (the split form of the module doc; generic and unrolled
+/// like [`gradient_and_modes_of`]).
+#[inline(always)]
+pub(crate) fn forces_kq_of<T: Lane>(
+    b: &[[T; 3]; 8],
+    h: &[[T; 3]; 4],
+    volume: T,
+    s: &[T; 6],
+    kq: &[[T; 3]; 4],
+) -> [[T; 3]; 8] {
+    let sig = [[s[0], s[3], s[5]], [s[3], s[1], s[4]], [s[5], s[4], s[2]]];
+    let zero = T::splat(0.0);
+    let mut p = [[zero; 3]; 3];
+    seq!(I in 0..3 {
+        seq!(J in 0..3 {
+            p[I][J] = volume * sig[I][J]
+                - (h[0][J] * kq[0][I] + h[1][J] * kq[1][I] + h[2][J] * kq[2][I] + h[3][J] * kq[3][I]);
+        });
+    });
+    let mut f = [[zero; 3]; 8];
+    seq!(A in 0..8 {
+        seq!(I in 0..3 {
+            f[A][I] = b[A][0] * p[I][0]
+                + b[A][1] * p[I][1]
+                + b[A][2] * p[I][2]
+                + T::splat(GAMMA[0][A]) * kq[0][I]
+                + T::splat(GAMMA[1][A]) * kq[1][I]
+                + T::splat(GAMMA[2][A]) * kq[2][I]
+                + T::splat(GAMMA[3][A]) * kq[3][I];
+        });
+    });
+    f
+}
+
+/// Voigt strain (engineering shear) of a displacement gradient (generic like
+/// [`gradient_and_modes_of`]).
+#[inline(always)]
+pub(crate) fn strain_of<T: Lane>(g: &[[T; 3]; 3]) -> [T; 6] {
     [
         g[0][0],
         g[1][1],

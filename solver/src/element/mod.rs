@@ -13,6 +13,7 @@ pub mod groups;
 pub mod hex8_full;
 pub mod hex8_full_lanes;
 pub mod hex8_uniform;
+pub mod hex8_uniform_lanes;
 pub mod host_locate;
 pub mod lanes;
 pub mod lumped_mass;

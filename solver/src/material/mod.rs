@@ -13,6 +13,7 @@ pub mod elastic;
 pub mod plastic_damage;
 mod point_states;
 
+use crate::element::lanes::{elastic_stress, VoigtLanes, LANES};
 pub use elastic::Elastic;
 pub use plastic_damage::PlasticDamage;
 pub use point_states::{PointStates, StateAccess, MAX_ELEMENT_STATE};
@@ -127,6 +128,24 @@ impl Material {
         match self {
             Material::Elastic(e) => (e.stress(strain), false),
             Material::PlasticDamage(p) => p.update_in_place(strain, state, ctx),
+        }
+    }
+
+    /// [`Material::update_in_place`] of the points of eight elements at once, element l at
+    /// strain lane l with state `states[l]` and context `ctx[l]`: the stresses in lanes
+    /// and whether each element's hardening moved, bit for bit those of eight calls of
+    /// [`Material::update_in_place`] (the one-point elements in lanes,
+    /// `element::hex8_uniform_lanes`).
+    #[inline(always)]
+    pub fn update_elements_in_place(
+        &self,
+        strain: &VoigtLanes,
+        states: &mut [&mut [f64]; LANES],
+        ctx: &[PointContext; LANES],
+    ) -> (VoigtLanes, [bool; LANES]) {
+        match self {
+            Material::Elastic(e) => (elastic_stress(e.lambda, e.mu, strain), [false; LANES]),
+            Material::PlasticDamage(p) => p.update_elements_in_place(strain, states, ctx),
         }
     }
 

@@ -18,6 +18,7 @@
 //! elements too large for their fracture energy, a strength factor k) follows from the
 //! fracture energy and `PointContext::char_length` (crack band, [`Regularisation`]).
 
+mod elements_in_lanes;
 mod hardening;
 mod params;
 mod points_in_lanes;
@@ -36,7 +37,7 @@ pub use hardening::{
 pub use params::{mohr_coulomb_fc, Constants, PlasticDamageParams};
 pub use recovery::Recovery;
 
-use crate::element::lanes::Lane;
+use crate::element::lanes::{Lane, VoigtLanes};
 use crate::error::{DcfmError, Result};
 use crate::material::{Elastic, PointContext, Voigt};
 use potential::Potential;
@@ -86,12 +87,12 @@ fn virgin_bound(surface: &YieldSurface, ct: f64, cc: f64) -> (f64, f64) {
     )
 }
 
-/// Upper bound of the bracket of eq. (25) at effective stress `eff` (one point, or one per
-/// lane), for the never-yielded check: F ≤ −margin c̄_c ⇔ bracket ≤ (1 − α)(1 − margin) c̄_c,
+/// Upper bound of the bracket of eq. (25) at effective stress `eff` and β (one point, or one
+/// per lane), for the never-yielded check: F ≤ −margin c̄_c ⇔ bracket ≤ (1 − α)(1 − margin) c̄_c,
 /// with σ̂_max ≤ Ī₁/3 + (2/3)√(3J̄₂) (F does not decrease with σ̂_max when β ≥ 0). A decision
 /// with a margin: products instead of the quotients of `invariants`.
 #[inline(always)]
-fn virgin_bracket<T: Lane>(surface: &YieldSurface, beta: f64, eff: &[T; 6]) -> T {
+fn virgin_bracket<T: Lane>(surface: &YieldSurface, beta: T, eff: &[T; 6]) -> T {
     const THIRD: f64 = 1.0 / 3.0;
     let i1 = eff[0] + eff[1] + eff[2];
     let m = i1 * T::splat(THIRD);
@@ -103,7 +104,7 @@ fn virgin_bracket<T: Lane>(surface: &YieldSurface, beta: f64, eff: &[T; 6]) -> T
     let q = (T::splat(1.5) * ss).sqrt();
     let smax = m + T::splat(2.0 * THIRD) * q;
     let zero = T::splat(0.0);
-    T::splat(surface.alpha) * i1 + q + T::splat(beta) * smax.max(zero)
+    T::splat(surface.alpha) * i1 + q + beta * smax.max(zero)
         - T::splat(surface.gamma) * (-smax).max(zero)
 }
 
@@ -667,6 +668,19 @@ fn write_virgin_point(n: &mut [f64], strain: &Voigt, eff: &Voigt) {
     n[slot::STRAIN..slot::STRAIN + 6].copy_from_slice(strain);
     n[slot::DAMAGE] = 0.0;
     n[slot::STRESS..slot::STRESS + 6].copy_from_slice(eff);
+}
+
+/// What the never-yielded shortcut changes in the state `n` of the point in lane `l` (whose
+/// other values are its old ones): the strain, the stress σ = σ̄ and D = 0. Value by value
+/// from the lanes: a point's Voigt vectors are never staged as arrays (a wide load of narrow
+/// stores stalls store forwarding).
+#[inline(always)]
+fn write_virgin_lane(n: &mut [f64], strain: &VoigtLanes, eff: &VoigtLanes, l: usize) {
+    for i in 0..6 {
+        n[slot::STRAIN + i] = strain[i][l];
+        n[slot::STRESS + i] = eff[i][l];
+    }
+    n[slot::DAMAGE] = 0.0;
 }
 
 #[inline]

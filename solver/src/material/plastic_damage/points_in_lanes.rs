@@ -6,7 +6,7 @@
 //! are those of eight calls of [`PlasticDamage::update`] bit for bit (tested in
 //! `element::hex8_full_lanes`).
 
-use super::{slot, virgin_bracket, PlasticDamage};
+use super::{slot, virgin_bracket, write_virgin_lane, PlasticDamage};
 use crate::element::lanes::{elastic_stress, F64s, VoigtLanes, LANES};
 use crate::material::{PointContext, Voigt};
 
@@ -45,7 +45,7 @@ impl PlasticDamage {
         let eff = elastic_stress(el.lambda, el.mu, &trial);
         let pass = if candidate.iter().any(|&c| c) {
             let (beta, limit) = self.virgin_bound_for(ctx.char_length.max(1e-12));
-            let bracket = virgin_bracket(&self.surface, beta, &eff);
+            let bracket = virgin_bracket(&self.surface, F64s::splat(beta), &eff);
             std::array::from_fn(|g| candidate[g] && beta >= 0.0 && bracket[g] <= limit)
         } else {
             [false; LANES]
@@ -72,7 +72,7 @@ impl PlasticDamage {
         for (g, (o, n)) in old.chunks_exact(N).zip(new.chunks_exact_mut(N)).enumerate() {
             if pass[g] {
                 n.copy_from_slice(o);
-                write_virgin(n, strain, &eff, g);
+                write_virgin_lane(n, strain, &eff, g);
                 for i in 0..6 {
                     sigma[i][g] = eff[i][g];
                 }
@@ -108,7 +108,7 @@ impl PlasticDamage {
         let mut moved = false;
         for (g, n) in states.chunks_exact_mut(N).enumerate() {
             if pass[g] {
-                write_virgin(n, strain, &eff, g);
+                write_virgin_lane(n, strain, &eff, g);
                 for i in 0..6 {
                     sigma[i][g] = eff[i][g];
                 }
@@ -123,17 +123,4 @@ impl PlasticDamage {
         }
         (sigma, moved)
     }
-}
-
-/// What the never-yielded shortcut changes in the state `n` of point g (whose other values
-/// are its old ones): the strain, the stress σ = σ̄ and D = 0. Value by value from the
-/// lanes: a point's Voigt vectors are never staged as arrays (a wide load of narrow stores
-/// stalls store forwarding).
-#[inline(always)]
-fn write_virgin(n: &mut [f64], strain: &VoigtLanes, eff: &VoigtLanes, g: usize) {
-    for i in 0..6 {
-        n[slot::STRAIN + i] = strain[i][g];
-        n[slot::STRESS + i] = eff[i][g];
-    }
-    n[slot::DAMAGE] = 0.0;
 }

@@ -1,0 +1,109 @@
+//! The update of eight one-point elements' points with the elements in SIMD lanes (issue
+//! 11): the never-yielded check of [`PlasticDamage::virgin_elastic`] for eight points of
+//! eight different elements at once (each with its own state and characteristic length),
+//! the general update ([`PlasticDamage::update`]) for the points that fail it. Each lane
+//! performs the scalar check's IEEE operations in the same order, so states and stresses
+//! are those of eight calls of [`PlasticDamage::update_in_place`] bit for bit (tested in
+//! `element::hex8_uniform_lanes`).
+
+use super::{slot, virgin_bracket, write_virgin_lane, PlasticDamage};
+use crate::element::lanes::{elastic_stress, F64s, VoigtLanes, LANES};
+use crate::material::{PointContext, Voigt};
+use seq_macro::seq;
+
+// The lanes are written out eight at a time below.
+const _: () = assert!(LANES == 8);
+
+impl PlasticDamage {
+    /// Update the point of each of eight elements in place, element l at strain lane l, its
+    /// state `states[l]` (the committed state on entry, the new one on return) and context
+    /// `ctx[l]`. Returns the nominal stresses (one lane per element) and, per element,
+    /// whether its hardening moved. The same as [`PlasticDamage::update_in_place`] element by
+    /// element, bit for bit.
+    #[inline(always)]
+    #[allow(clippy::identity_op)] // `seq!` writes PLASTIC + 0 for the first component
+    pub fn update_elements_in_place(
+        &self,
+        strain: &VoigtLanes,
+        states: &mut [&mut [f64]; LANES],
+        ctx: &[PointContext; LANES],
+    ) -> (VoigtLanes, [bool; LANES]) {
+        // The elements whose point the shortcut may take: never yielded, finite strain
+        // (else `update` decides, as it does first). Plain loops: `array::from_fn`
+        // closures holding vector arithmetic were left out of line (measured).
+        let mut candidate = [false; LANES];
+        let mut any = false;
+        for l in 0..LANES {
+            let s = &states[l];
+            let mut finite = true;
+            for e in strain {
+                finite &= e[l].is_finite();
+            }
+            candidate[l] = s[slot::Y_T] == 0.0 && s[slot::Y_C] == 0.0 && finite;
+            any |= candidate[l];
+        }
+        let mut sigma = [F64s::ZERO; 6];
+        let mut moved = [false; LANES];
+        let mut pass = [false; LANES];
+        if any {
+            // σ̄ = E₀ : (ε − εᵖ), the plastic strains read one component at a time.
+            let mut plastic = [F64s::ZERO; 6];
+            seq!(I in 0..6 {
+                plastic[I] = F64s([
+                    states[0][slot::PLASTIC + I],
+                    states[1][slot::PLASTIC + I],
+                    states[2][slot::PLASTIC + I],
+                    states[3][slot::PLASTIC + I],
+                    states[4][slot::PLASTIC + I],
+                    states[5][slot::PLASTIC + I],
+                    states[6][slot::PLASTIC + I],
+                    states[7][slot::PLASTIC + I],
+                ]);
+            });
+            // An optimisation barrier (like the displacements' in `element::groups`): the
+            // vectors are stored whole and read back as vectors, so that the arithmetic
+            // below is vectorised across the lanes.
+            std::hint::black_box(&mut plastic);
+            let mut trial = [F64s::ZERO; 6];
+            for i in 0..6 {
+                trial[i] = strain[i] - plastic[i];
+            }
+            let el = &self.elastic;
+            let eff = elastic_stress(el.lambda, el.mu, &trial);
+            let (beta, limit) = match self.virgin_bound {
+                Some((beta, limit)) => (F64s::splat(beta), F64s::splat(limit)),
+                None => {
+                    let (mut beta, mut limit) = (F64s::ZERO, F64s::ZERO);
+                    for l in 0..LANES {
+                        (beta[l], limit[l]) = self.virgin_bound_for(ctx[l].char_length.max(1e-12));
+                    }
+                    (beta, limit)
+                }
+            };
+            let bracket = virgin_bracket(&self.surface, beta, &eff);
+            for l in 0..LANES {
+                pass[l] = candidate[l] && beta[l] >= 0.0 && bracket[l] <= limit[l];
+                if pass[l] {
+                    write_virgin_lane(states[l], strain, &eff, l);
+                    for i in 0..6 {
+                        sigma[i][l] = eff[i][l];
+                    }
+                }
+            }
+        }
+        for l in 0..LANES {
+            if !pass[l] {
+                let mut point: Voigt = [0.0; 6];
+                for i in 0..6 {
+                    point[i] = strain[i][l];
+                }
+                let (s, m) = self.update_general_in_place(&point, states[l], &ctx[l]);
+                moved[l] = m;
+                for i in 0..6 {
+                    sigma[i][l] = s[i];
+                }
+            }
+        }
+        (sigma, moved)
+    }
+}

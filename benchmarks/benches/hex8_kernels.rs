@@ -9,7 +9,8 @@
 //! - `hex8_one_point_plastic_damage/in_place`: the one-point kernel with the plastic-damage
 //!   model below first yield, its state updated in place, dispatched like the step (the
 //!   Yingxiuwan rock's kernel); `.../lanes_of_8`: eight such elements at once in SIMD lanes
-//!   (`hex8_uniform_lanes::internal_forces_in_place`, geometry in a lane block), counted
+//!   (`hex8_uniform_lanes::LaneKernel`, dispatched as the force pass does, geometry in a
+//!   lane block), counted
 //!   as eight elements.
 //!
 //! `*/single` runs one element whose data stays in L1 (pure arithmetic cost);
@@ -27,7 +28,7 @@ use criterion::{criterion_group, criterion_main, Criterion, Throughput};
 use dcfm::element::hex8_full::{self, FullGeometry};
 use dcfm::element::hex8_full_lanes::InternalForce;
 use dcfm::element::hex8_uniform::{self, UniformGeometry};
-use dcfm::element::hex8_uniform_lanes::{self, UniformBlock};
+use dcfm::element::hex8_uniform_lanes::{LaneKernel, UniformBlock};
 use dcfm::element::lanes::{run_lane_work, F64s, LaneWork, NodalLanes, LANES};
 use dcfm::material::plastic_damage::PlasticDamageParams;
 use dcfm::material::{Elastic, Material, PlasticDamage, PointContext};
@@ -348,43 +349,19 @@ fn one_point_plastic_damage(c: &mut Criterion) {
     group.throughput(Throughput::Elements(LANES as u64));
     group.bench_function("lanes_of_8", |b| {
         b.iter(|| {
-            let out = run_lane_work(OnePointLanes {
+            let mut slices = states.each_mut().map(|v| v.as_mut_slice());
+            let out = run_lane_work(LaneKernel {
                 block: black_box(&block),
                 material: &mat,
                 u: black_box(&u_lanes),
-                states: &mut states,
+                eps0: None,
+                states: &mut slices,
                 ctx: &ctxs,
             });
             black_box(out);
         })
     });
     group.finish();
-}
-
-/// Eight one-point plastic-damage elements below first yield in SIMD lanes, states updated
-/// in place (`hex8_uniform_lanes::internal_forces_in_place`), inside pulp's dispatch.
-struct OnePointLanes<'a> {
-    block: &'a UniformBlock,
-    material: &'a Material,
-    u: &'a NodalLanes,
-    states: &'a mut [Vec<f64>; LANES],
-    ctx: &'a [PointContext; LANES],
-}
-
-impl LaneWork for OnePointLanes<'_> {
-    type Output = (NodalLanes, [bool; LANES]);
-    #[inline(always)]
-    fn run(self) -> Self::Output {
-        let mut states = self.states.each_mut().map(|v| v.as_mut_slice());
-        hex8_uniform_lanes::internal_forces_in_place(
-            self.block,
-            self.material,
-            self.u,
-            None,
-            &mut states,
-            self.ctx,
-        )
-    }
 }
 
 criterion_group!(

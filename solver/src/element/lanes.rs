@@ -1,6 +1,7 @@
 //! SIMD lanes for the element kernels (issue 11): [`LANES`] values are processed together,
 //! each `f64` of the scalar kernel becoming an [`F64s`] — one value per Gauss point of a
-//! fully integrated element in `hex8_full_lanes`.
+//! fully integrated element in `hex8_full_lanes`, one element per lane in
+//! `hex8_uniform_lanes`.
 //!
 //! The lane type is a plain array with element-wise operators. Inside [`run_lane_work`]
 //! (pulp's runtime dispatch: the work is compiled once per instruction set — AVX-512

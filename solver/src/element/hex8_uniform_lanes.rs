@@ -20,6 +20,7 @@ use crate::element::hex8_uniform::{
     forces_kq_of, gradient_and_modes_of, modes_from_of, strain_of, UniformGeometry,
 };
 use crate::element::lanes::{F64s, LaneWork, NodalLanes, VoigtLanes, LANES};
+use crate::lanes8;
 use crate::material::{Material, PointContext};
 use seq_macro::seq;
 
@@ -163,47 +164,6 @@ impl LaneWork for LaneKernel<'_, '_> {
             self.ctx,
         )
     }
-}
-
-/// An [`F64s`] whose lane `l` is `$e` (written out lane by lane: eight loads into one
-/// vector).
-macro_rules! lanes8 {
-    ($l:ident => $e:expr) => {
-        F64s([
-            {
-                let $l = 0;
-                $e
-            },
-            {
-                let $l = 1;
-                $e
-            },
-            {
-                let $l = 2;
-                $e
-            },
-            {
-                let $l = 3;
-                $e
-            },
-            {
-                let $l = 4;
-                $e
-            },
-            {
-                let $l = 5;
-                $e
-            },
-            {
-                let $l = 6;
-                $e
-            },
-            {
-                let $l = 7;
-                $e
-            },
-        ])
-    };
 }
 
 /// Nodal values `x[conn[l][a]] − reference[l][a]` of eight elements in lanes, one lane

@@ -134,19 +134,47 @@ pub fn run_lane_work<W: LaneWork>(work: W) -> W::Output {
     pulp::Arch::new().dispatch(Dispatched(work))
 }
 
-/// Gather the nodal values `x[conn[a]]` of the elements of one lane block.
-#[inline(always)]
-pub fn gather(x: &[[f64; 3]], conn: &[[u32; 8]; LANES]) -> NodalLanes {
-    let mut out = [[F64s::ZERO; 3]; 8];
-    for (l, nodes) in conn.iter().enumerate() {
-        for a in 0..8 {
-            let v = &x[nodes[a] as usize];
-            out[a][0].0[l] = v[0];
-            out[a][1].0[l] = v[1];
-            out[a][2].0[l] = v[2];
-        }
-    }
-    out
+/// An [`F64s`] whose lane `l` is `$e` (written out lane by lane: eight loads into one
+/// vector).
+#[macro_export]
+#[doc(hidden)]
+macro_rules! lanes8 {
+    ($l:ident => $e:expr) => {
+        $crate::element::lanes::F64s([
+            {
+                let $l = 0;
+                $e
+            },
+            {
+                let $l = 1;
+                $e
+            },
+            {
+                let $l = 2;
+                $e
+            },
+            {
+                let $l = 3;
+                $e
+            },
+            {
+                let $l = 4;
+                $e
+            },
+            {
+                let $l = 5;
+                $e
+            },
+            {
+                let $l = 6;
+                $e
+            },
+            {
+                let $l = 7;
+                $e
+            },
+        ])
+    };
 }
 
 /// The values of lane `l`.

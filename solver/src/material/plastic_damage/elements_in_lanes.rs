@@ -8,6 +8,7 @@
 
 use super::{slot, virgin_bracket, write_virgin_lane, PlasticDamage};
 use crate::element::lanes::{elastic_stress, F64s, VoigtLanes, LANES};
+use crate::lanes8;
 use crate::material::{PointContext, Voigt};
 use seq_macro::seq;
 
@@ -49,16 +50,7 @@ impl PlasticDamage {
             // σ̄ = E₀ : (ε − εᵖ), the plastic strains read one component at a time.
             let mut plastic = [F64s::ZERO; 6];
             seq!(I in 0..6 {
-                plastic[I] = F64s([
-                    states[0][slot::PLASTIC + I],
-                    states[1][slot::PLASTIC + I],
-                    states[2][slot::PLASTIC + I],
-                    states[3][slot::PLASTIC + I],
-                    states[4][slot::PLASTIC + I],
-                    states[5][slot::PLASTIC + I],
-                    states[6][slot::PLASTIC + I],
-                    states[7][slot::PLASTIC + I],
-                ]);
+                plastic[I] = lanes8!(l => states[l][slot::PLASTIC + I]);
             });
             // An optimisation barrier (like the displacements' in `element::groups`): the
             // vectors are stored whole and read back as vectors, so that the arithmetic

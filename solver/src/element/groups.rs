@@ -1186,11 +1186,13 @@ impl<'k> Kernel<'k> {
     /// [`UniformSet::blocks`], the whole block among the `remaining` elements of the
     /// caller's range, and every element of it due.
     ///
-    /// Plastic-damage one-point elements stay scalar: in lanes (tested bit for bit, the
-    /// kernel alone 2.5× faster per element in L1) the 40³ cube's elastic regime ran
-    /// slower in the step (5.3–5.9e6 against 7.1e6 element-updates/s on one thread): the
-    /// eight states' never-yielded check waits on the whole block's arithmetic, where the
-    /// scalar kernel overlaps consecutive elements (docs/benchmarks.md, 2026-11-28).
+    /// Plastic-damage one-point elements stay scalar. In lanes (tested bit for bit, the
+    /// kernel alone 2.5× faster per element in L1) they are faster only while the group
+    /// stays in cache: the 20³ cube's elastic regime 1.05–1.16e7 against 7.2–8.0e6
+    /// element-updates/s on one thread, but its localised regime 7.9–9.0e6 against
+    /// 9.0–9.3e6, the 30³ and 40³ cubes and the Yingxiuwan rock (171k elements) at parity
+    /// or slower: out of cache the pass is bound by its ≈ 0.9 kB per element of memory
+    /// traffic, not by the arithmetic the lanes save (docs/benchmarks.md, 2026-11-28).
     #[inline(always)]
     fn lane_block(
         &self,

@@ -29,19 +29,15 @@ impl PlasticDamage {
         states: &mut [&mut [f64]; LANES],
         ctx: &[PointContext; LANES],
     ) -> (VoigtLanes, [bool; LANES]) {
-        // The elements whose point the shortcut may take: never yielded, finite strain
-        // (else `update` decides, as it does first). Plain loops: `array::from_fn`
-        // closures holding vector arithmetic were left out of line (measured).
-        let mut candidate = [false; LANES];
+        // The elements whose point the shortcut may take: never yielded (the strains'
+        // finiteness, which `update` checks first, joins the mask below, after the
+        // arithmetic, so that this branch waits on the states alone).
+        let mut virgin = [false; LANES];
         let mut any = false;
         for l in 0..LANES {
             let s = &states[l];
-            let mut finite = true;
-            for e in strain {
-                finite &= e[l].is_finite();
-            }
-            candidate[l] = s[slot::Y_T] == 0.0 && s[slot::Y_C] == 0.0 && finite;
-            any |= candidate[l];
+            virgin[l] = s[slot::Y_T] == 0.0 && s[slot::Y_C] == 0.0;
+            any |= virgin[l];
         }
         let mut sigma = [F64s::ZERO; 6];
         let mut moved = [false; LANES];
@@ -73,8 +69,28 @@ impl PlasticDamage {
                 }
             };
             let bracket = virgin_bracket(&self.surface, beta, &eff);
+            // The mask without branches (`&` on bools): finite strains ((ε − ε) = 0 is
+            // false for ±∞ and NaN), β ≥ 0 and the bracket within the limit.
+            let mut finite = [true; LANES];
+            for e in strain {
+                #[allow(clippy::eq_op)] // ε − ε: 0 when ε is finite, NaN when not
+                let zero = *e - *e;
+                for l in 0..LANES {
+                    finite[l] &= zero[l] == 0.0;
+                }
+            }
+            let mut all = true;
             for l in 0..LANES {
-                pass[l] = candidate[l] && beta[l] >= 0.0 && bracket[l] <= limit[l];
+                pass[l] = virgin[l] & finite[l] & (beta[l] >= 0.0) & (bracket[l] <= limit[l]);
+                all &= pass[l];
+            }
+            if all {
+                seq!(L in 0..8 {
+                    write_virgin_lane(states[L], strain, &eff, L);
+                });
+                return (eff, moved);
+            }
+            for l in 0..LANES {
                 if pass[l] {
                     write_virgin_lane(states[l], strain, &eff, l);
                     for i in 0..6 {

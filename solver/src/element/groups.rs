@@ -1191,7 +1191,7 @@ impl<'k> Kernel<'k> {
     /// stays in cache: the 20³ cube's elastic regime 1.05–1.16e7 against 7.2–8.0e6
     /// element-updates/s on one thread, but its localised regime 7.9–9.0e6 against
     /// 9.0–9.3e6, the 30³ and 40³ cubes and the Yingxiuwan rock (171k elements) at parity
-    /// or slower: out of cache the pass is bound by its ≈ 0.9 kB per element of memory
+    /// or slower: out of cache the pass is bound by its ≈ 1.1 kB per element of memory
     /// traffic, not by the arithmetic the lanes save (docs/benchmarks.md, 2026-11-28).
     #[inline(always)]
     fn lane_block(

@@ -10,9 +10,10 @@ use crate::element::damage_scan::{add_in_order, DamageScan, KNOWN_POINTS};
 use crate::element::hex8_full::{self, FullGeometry};
 use crate::element::hex8_full_lanes;
 use crate::element::hex8_uniform::{self, UniformGeometry};
-use crate::element::hex8_uniform_lanes::{self, UniformBlock, UniformSet};
+use crate::element::hex8_uniform_lanes::{self, UniformBlock};
 use crate::element::lanes::{self, LaneWork, LANES};
 use crate::element::stable_step::characteristic_length;
+use crate::element::uniform_set::UniformSet;
 use crate::element::Integration;
 use crate::error::{DcfmError, Result};
 use crate::material::{Material, PointContext, PointStates, StateAccess, Voigt, MAX_ELEMENT_STATE};
@@ -361,16 +362,17 @@ impl ElementGroup {
             return 0.0;
         }
         let geo = match &self.geometry {
-            GroupGeometry::Uniform(_) => std::mem::size_of::<UniformGeometry>(),
-            GroupGeometry::Full(_) => std::mem::size_of::<FullGeometry>(),
+            // Shared records and the indices (`UniformSet`), per element.
+            GroupGeometry::Uniform(g) => g.bytes() as f64 / self.len() as f64,
+            GroupGeometry::Full(_) => std::mem::size_of::<FullGeometry>() as f64,
         };
-        let fixed = geo + std::mem::size_of::<[u32; 8]>() + 4 + 2 * 8;
+        let fixed = geo + (std::mem::size_of::<[u32; 8]>() + 4 + 2 * 8) as f64;
         let extra = self.initial_strain.as_ref().map_or(0, |v| v.len() * 48)
             + self.reference.as_ref().map_or(0, |v| v.len() * 192)
             + self.element_forces.as_ref().map_or(0, |b| {
                 (b.internal.len() + b.damping.len()) * std::mem::size_of::<[[f64; 3]; 8]>()
             });
-        fixed as f64 + (self.states.bytes() + extra) as f64 / self.len() as f64
+        fixed + (self.states.bytes() + extra) as f64 / self.len() as f64
     }
 
     /// Phase one of the two-phase pass ([`add_internal_forces`]): the forces of every
@@ -1183,7 +1185,7 @@ impl<'k> Kernel<'k> {
     /// The lane block of one-point elements that starts at element `le`, with the steps
     /// of its elements, when the pass runs them in lanes: lanes on, a linear elastic
     /// material, states in place, `le` the first element of a block of
-    /// [`UniformSet::blocks`], the whole block among the `remaining` elements of the
+    /// [`UniformSet::block`], the whole block among the `remaining` elements of the
     /// caller's range, and every element of it due.
     ///
     /// Plastic-damage one-point elements stay scalar. In lanes (tested bit for bit, the
@@ -1191,8 +1193,9 @@ impl<'k> Kernel<'k> {
     /// stays in cache: the 20³ cube's elastic regime 1.05–1.16e7 against 7.2–8.0e6
     /// element-updates/s on one thread, but its localised regime 7.9–9.0e6 against
     /// 9.0–9.3e6, the 30³ and 40³ cubes and the Yingxiuwan rock (171k elements) at parity
-    /// or slower: out of cache the pass is bound by its ≈ 1.1 kB per element of memory
-    /// traffic, not by the arithmetic the lanes save (docs/benchmarks.md, 2026-11-28).
+    /// or slower, and still at parity on the 40³ cube with the geometry shared
+    /// ([`UniformSet`]) and with the states' write-back trimmed: out of cache what the
+    /// lanes save is not what bounds the pass (docs/benchmarks.md, 2026-11-28).
     #[inline(always)]
     fn lane_block(
         &self,
@@ -1211,7 +1214,7 @@ impl<'k> Kernel<'k> {
         {
             return None;
         }
-        let block = g.blocks().get(le / LANES)?;
+        let block = g.block(le / LANES)?;
         let mut dts = [0.0; LANES];
         for (l, dt) in dts.iter_mut().enumerate() {
             *dt = settings.element_dt(le + l)?;

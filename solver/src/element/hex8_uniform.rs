@@ -71,7 +71,19 @@ pub type GradientAndModes = ([[f64; 3]; 3], [[f64; 3]; 4]);
 
 impl UniformGeometry {
     /// Geometry of an element with nodal coordinates `x`; `None` if det J ≤ 0 somewhere.
+    ///
+    /// Computed from the coordinates relative to the first node, x_a − x_1: b, V and (as
+    /// Σ_a Γ_αa = 0) h depend on differences of coordinates only, so the geometry is the
+    /// same, bit for bit, wherever the same cell lies whenever the differences are — the
+    /// repeated cells of a structured mesh, which [`UniformSet`] then stores once — and it
+    /// carries no rounding of the absolute coordinates (a 1 m cell 100 m from the origin
+    /// loses two digits to them).
+    ///
+    /// [`UniformSet`]: crate::element::uniform_set::UniformSet
     pub fn new(x: &[[f64; 3]; 8], elastic: &Elastic, hourglass: f64) -> Option<Self> {
+        let x0 = x[0];
+        let x: [[f64; 3]; 8] = x.map(|xa| std::array::from_fn(|j| xa[j] - x0[j]));
+        let x = &x;
         let mut bv = [[0.0; 3]; 8];
         let mut volume = 0.0;
         for p in gauss_points() {

@@ -15,6 +15,8 @@
 //! and on whole runs in `tests/element_lanes.rs`). An earlier attempt that gathered the
 //! geometry from the array of structures into lanes at every step was slower than the
 //! scalar kernel (docs/benchmarks.md, 2026-11-28): narrow stores read back by wide loads.
+//! A group keeps its blocks, like its elements' geometry, once per distinct block
+//! ([`UniformSet`](crate::element::uniform_set::UniformSet)).
 
 use crate::element::hex8_uniform::{
     forces_kq_of, gradient_and_modes_of, modes_from_of, strain_of, UniformGeometry,
@@ -51,46 +53,6 @@ impl UniformBlock {
             volume: lanes(&|g| g.volume),
             kappa: lanes(&|g| g.kappa),
         }
-    }
-}
-
-/// The geometry of a group's one-point elements: element by element (read as a slice of
-/// [`UniformGeometry`]) and, for the kernel in lanes, in blocks of [`LANES`] (block k holds
-/// elements 8k … 8k + 7; the last `len % 8` elements have none and run the scalar kernel).
-/// Built once from the elements and never changed, so the two stay the same geometry.
-#[derive(Clone, Debug, Default)]
-pub struct UniformSet {
-    elements: Vec<UniformGeometry>,
-    blocks: Vec<UniformBlock>,
-}
-
-impl UniformSet {
-    /// The lane blocks ([`UniformSet`]'s doc).
-    pub fn blocks(&self) -> &[UniformBlock] {
-        &self.blocks
-    }
-}
-
-impl From<Vec<UniformGeometry>> for UniformSet {
-    fn from(elements: Vec<UniformGeometry>) -> Self {
-        let blocks = elements
-            .chunks_exact(LANES)
-            .map(|c| UniformBlock::new(c.try_into().expect("chunks of LANES")))
-            .collect();
-        Self { elements, blocks }
-    }
-}
-
-impl FromIterator<UniformGeometry> for UniformSet {
-    fn from_iter<I: IntoIterator<Item = UniformGeometry>>(iter: I) -> Self {
-        Self::from(iter.into_iter().collect::<Vec<_>>())
-    }
-}
-
-impl std::ops::Deref for UniformSet {
-    type Target = [UniformGeometry];
-    fn deref(&self) -> &[UniformGeometry] {
-        &self.elements
     }
 }
 
@@ -400,27 +362,6 @@ mod tests {
             }
             if material.has_damage() {
                 assert_eq!(seen, [true, true], "material {m}: both regimes met");
-            }
-        }
-    }
-
-    /// The set's blocks hold the elements' geometry value for value; the tail (fewer than
-    /// eight) has none.
-    #[test]
-    fn blocks_are_the_elements_in_lanes() {
-        let mut rng = Lcg(42);
-        let el = Elastic::new("rock", 20e9, 0.25, 2600.0).unwrap();
-        let set: UniformSet = (0..19)
-            .map(|_| UniformGeometry::new(&element(&mut rng), &el, 0.05).unwrap())
-            .collect();
-        assert_eq!((set.len(), set.blocks().len()), (19, 2));
-        for (k, block) in set.blocks().iter().enumerate() {
-            for l in 0..LANES {
-                let g = &set[LANES * k + l];
-                assert_eq!(block.volume[l], g.volume);
-                assert_eq!(block.kappa[l], g.kappa);
-                assert_eq!(block.b[7][2][l], g.b[7][2]);
-                assert_eq!(block.h[3][1][l], g.h[3][1]);
             }
         }
     }

@@ -19,6 +19,7 @@ pub mod lanes;
 pub mod lumped_mass;
 pub mod stable_step;
 pub mod stiffness;
+pub mod uniform_set;
 
 /// The trilinear hex8 geometry lives with the mesh (its Jacobian checks validate meshes);
 /// the kernels use it from here.

@@ -8,7 +8,9 @@
 //! — the structured generators' boxes, the Yingxiuwan model's tensor-product rock — so the
 //! set keeps each geometry that occurs once, **bit for bit** (two elements share a record
 //! only when all 38 values have the same bits), and each element a 4-byte index into the
-//! records. The kernels read the very values they read before: results do not change.
+//! records. Sharing changes no value an element reads (what changed results, at round-off,
+//! is computing the geometry from relative coordinates, [`UniformGeometry::new`], which
+//! makes the repeated cells' bits equal).
 //!
 //! The lane blocks of [`hex8_uniform_lanes`](crate::element::hex8_uniform_lanes) (the
 //! geometry of eight consecutive elements as structure of arrays, 2,432 bytes) are kept the

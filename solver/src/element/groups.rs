@@ -303,7 +303,11 @@ impl ElementGroup {
                     volume.push(geo.volume);
                     g.push(geo);
                 }
-                GroupGeometry::Uniform(g.into())
+                // Lane blocks only where the pass can use them ([`Self::lane_block`]).
+                GroupGeometry::Uniform(UniformSet::new(
+                    &g,
+                    matches!(material, Material::Elastic(_)),
+                ))
             }
             Integration::Full => {
                 let mut g = Vec::with_capacity(elements.len());
@@ -829,9 +833,7 @@ impl ElementGroup {
         }
         let (blocks, colour_blocks) = colouring_blocks(&elements, &colour_ranges);
         let geometry = match &self.geometry {
-            GroupGeometry::Uniform(g) => {
-                GroupGeometry::Uniform(kept.iter().map(|&le| g[le]).collect())
-            }
+            GroupGeometry::Uniform(g) => GroupGeometry::Uniform(g.subset(&kept)),
             GroupGeometry::Full(g) => GroupGeometry::Full(kept.iter().map(|&le| g[le]).collect()),
         };
         let current = self.states.current();

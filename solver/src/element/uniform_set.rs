@@ -14,7 +14,9 @@
 //!
 //! The lane blocks of [`hex8_uniform_lanes`](crate::element::hex8_uniform_lanes) (the
 //! geometry of eight consecutive elements as structure of arrays, 2,432 bytes) are kept the
-//! same way, once per distinct tuple of the eight elements' geometries.
+//! same way, once per distinct tuple of the eight elements' geometries, and only for a set
+//! whose elements can run in lanes ([`UniformSet::new`]: a group of linear elastic
+//! elements; plastic-damage one-point elements stay scalar).
 
 use crate::element::hex8_uniform::UniformGeometry;
 use crate::element::hex8_uniform_lanes::UniformBlock;
@@ -39,6 +41,8 @@ pub struct UniformSet {
     blocks: Vec<UniformBlock>,
     /// Block k → its lane geometry in `blocks`.
     block_of: Vec<u32>,
+    /// Whether the set holds lane blocks (kept by [`UniformSet::subset`]).
+    lane_blocks: bool,
 }
 
 /// The bits of every value of `g`: equal keys, identical geometry.
@@ -123,33 +127,42 @@ impl std::ops::Index<usize> for UniformSet {
     }
 }
 
-impl From<Vec<UniformGeometry>> for UniformSet {
-    fn from(elements: Vec<UniformGeometry>) -> Self {
-        let mut set = UniformSet::default();
+impl UniformSet {
+    /// The set of `elements` (in element order), with lane blocks when `lane_blocks` (for
+    /// a group whose elements can run in lanes; without them [`Self::block`] is `None`
+    /// and every element runs the scalar kernel).
+    pub fn new(elements: &[UniformGeometry], lane_blocks: bool) -> Self {
+        let mut set = UniformSet {
+            lane_blocks,
+            ..UniformSet::default()
+        };
         let mut seen = HashMap::new();
         set.shape_of = elements
             .iter()
             .map(|g| intern(&mut seen, &mut set.shapes, key(g), || *g))
             .collect();
-        let mut seen_blocks = HashMap::new();
-        set.block_of = set
-            .shape_of
-            .chunks_exact(LANES)
-            .zip(elements.chunks_exact(LANES))
-            .map(|(ids, geo)| {
-                let ids: [u32; LANES] = ids.try_into().expect("chunks of LANES");
-                intern(&mut seen_blocks, &mut set.blocks, ids, || {
-                    UniformBlock::new(geo.try_into().expect("chunks of LANES"))
+        if lane_blocks {
+            let mut seen_blocks = HashMap::new();
+            set.block_of = set
+                .shape_of
+                .chunks_exact(LANES)
+                .zip(elements.chunks_exact(LANES))
+                .map(|(ids, geo)| {
+                    let ids: [u32; LANES] = ids.try_into().expect("chunks of LANES");
+                    intern(&mut seen_blocks, &mut set.blocks, ids, || {
+                        UniformBlock::new(geo.try_into().expect("chunks of LANES"))
+                    })
                 })
-            })
-            .collect();
+                .collect();
+        }
         set
     }
-}
 
-impl FromIterator<UniformGeometry> for UniformSet {
-    fn from_iter<I: IntoIterator<Item = UniformGeometry>>(iter: I) -> Self {
-        Self::from(iter.into_iter().collect::<Vec<_>>())
+    /// The set of the elements `kept` (indices into this set, in their new order), with
+    /// lane blocks when this set has them.
+    pub fn subset(&self, kept: &[usize]) -> Self {
+        let elements: Vec<UniformGeometry> = kept.iter().map(|&le| self[le]).collect();
+        Self::new(&elements, self.lane_blocks)
     }
 }
 
@@ -181,7 +194,7 @@ mod tests {
             }
             geo.push(UniformGeometry::new(&x, &el, 0.05).unwrap());
         }
-        let set = UniformSet::from(geo.clone());
+        let set = UniformSet::new(&geo, true);
         assert_eq!(set.len(), 43);
         assert_eq!(set.block_count(), 5);
         assert!(set.block(5).is_none());
@@ -214,6 +227,39 @@ mod tests {
         assert!(set.bytes() < 43 * std::mem::size_of::<UniformGeometry>() + 5 * 2432);
     }
 
+    /// A set built without lane blocks has none and its subsets neither; a subset of a set
+    /// with blocks has the blocks of its own elements, in their new order.
+    #[test]
+    fn a_subset_keeps_the_choice_of_lane_blocks() {
+        let el = Elastic::new("rock", 20e9, 0.25, 2600.0).unwrap();
+        let geo: Vec<UniformGeometry> = (0..20)
+            .map(|k| {
+                let size = [1.0 + 0.1 * k as f64, 1.0, 2.0];
+                UniformGeometry::new(&cell([0.0; 3], size), &el, 0.05).unwrap()
+            })
+            .collect();
+        let kept: Vec<usize> = (0..20).rev().filter(|k| k % 3 != 0).collect();
+        let scalar = UniformSet::new(&geo, false);
+        assert_eq!((scalar.block_count(), scalar.distinct().1), (0, 0));
+        assert!(scalar.block(0).is_none());
+        assert!(scalar.bytes() < UniformSet::new(&geo, true).bytes());
+        let scalar_part = scalar.subset(&kept);
+        assert_eq!(scalar_part.block_count(), 0);
+        let part = UniformSet::new(&geo, true).subset(&kept);
+        assert_eq!(part.len(), kept.len());
+        assert_eq!(part.block_count(), kept.len() / LANES);
+        for (i, &le) in kept.iter().enumerate() {
+            assert_eq!(key(&part[i]), key(&geo[le]));
+            assert_eq!(key(&scalar_part[i]), key(&geo[le]));
+        }
+        // 13 elements: one block, the first eight kept, and a scalar tail.
+        assert!(part.block(1).is_none());
+        let block = part.block(0).unwrap();
+        for l in 0..LANES {
+            assert_eq!(block.volume[l].to_bits(), geo[kept[l]].volume.to_bits());
+        }
+    }
+
     /// Geometries that differ in one bit of one value are kept apart (−0 and +0 too).
     #[test]
     fn a_single_bit_keeps_two_geometries_apart() {
@@ -225,7 +271,7 @@ mod tests {
         signed.b[0][0] = -0.0;
         let mut unsigned = g;
         unsigned.b[0][0] = 0.0;
-        let set = UniformSet::from(vec![g, nudged, g, signed, unsigned]);
+        let set = UniformSet::new(&[g, nudged, g, signed, unsigned], true);
         assert_eq!(set.distinct().0, 4);
         assert_eq!(set[1].h[3][2].to_bits(), nudged.h[3][2].to_bits());
         assert_eq!(set[3].b[0][0].to_bits(), (-0.0f64).to_bits());

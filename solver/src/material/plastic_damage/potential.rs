@@ -52,8 +52,40 @@ impl Potential {
         k: f64,
         mu: f64,
     ) -> ([f64; 3], [f64; 3], f64) {
+        let q = self.shrink(trial.q, 3.0 * mu * dlam);
+        let r = (self.hyper * self.hyper + q * q).sqrt();
+        let (s, m) = self.at(trial, q, r, dlam, k);
+        (s, m, q)
+    }
+
+    /// The return that leaves √(3J̄₂) = q, 0 < q ≤ qᵗʳ: its principal effective stress,
+    /// its flow direction and its Δλ. The deviator's equation q (1 + 3μΔλ/R(q)) = qᵗʳ is
+    /// explicit in Δλ,
+    ///
+    ///   Δλ = (qᵗʳ − q) R(q) / (3μ q),  R = √(h² + q²),
+    ///
+    /// where Δλ ↦ q needs a root ([`Self::shrink`]); Δλ decreases strictly from ∞ (q → 0,
+    /// h > 0) to 0 (q = qᵗʳ), so q parametrises every return of a trial with qᵗʳ > 0.
+    #[inline]
+    pub fn returned_at_q(
+        &self,
+        trial: &TrialSplit,
+        q: f64,
+        k: f64,
+        mu: f64,
+    ) -> ([f64; 3], [f64; 3], f64) {
+        let r = (self.hyper * self.hyper + q * q).sqrt();
+        let dlam = (trial.q - q) * r / (3.0 * mu * q);
+        let (s, m) = self.at(trial, q, r, dlam, k);
+        (s, m, dlam)
+    }
+
+    /// Principal stress and flow direction after a return of size Δλ whose deviator
+    /// shrank to √(3J̄₂) = q, with R = √(h² + q²): s = sᵗʳ q/qᵗʳ, mean − K Δλ tan ψ;
+    /// m = (3/2) s/R + (tan ψ/3) 1.
+    #[inline(always)]
+    fn at(&self, trial: &TrialSplit, q: f64, r: f64, dlam: f64, k: f64) -> ([f64; 3], [f64; 3]) {
         let (dev, q_tr) = (&trial.dev, trial.q);
-        let q = self.shrink(q_tr, 3.0 * mu * dlam);
         let scale = if q_tr > 0.0 { q / q_tr } else { 0.0 };
         let mean = trial.mean - k * dlam * self.tan_psi;
         let s = [
@@ -61,11 +93,18 @@ impl Potential {
             mean + scale * dev[1],
             mean + scale * dev[2],
         ];
-        let r = (self.hyper * self.hyper + q * q).sqrt();
         let t = self.tan_psi / 3.0;
         let k_dev = 1.5 * scale / r;
         let m = [k_dev * dev[0] + t, k_dev * dev[1] + t, k_dev * dev[2] + t];
-        (s, m, q)
+        (s, m)
+    }
+
+    /// The largest q that the root of [`Self::shrink`] for c = 3μΔλ cannot be below:
+    /// max(qᵗʳ − c, qᵗʳ h/(h + c)) (φ ≤ 0 at both, as R ≥ q and R ≥ h), so a return to it
+    /// has a Δλ at least c/(3μ).
+    #[inline]
+    pub fn q_below(&self, q_tr: f64, c: f64) -> f64 {
+        (q_tr - c).max(q_tr * self.hyper / (self.hyper + c))
     }
 
     /// Root q ∈ [0, qᵗʳ] of φ(q) = q + c q/√(h² + q²) − qᵗʳ, c = 3μΔλ ≥ 0.
@@ -147,6 +186,64 @@ mod tests {
         let g = pot.gradient(&s);
         for i in 0..3 {
             assert!((g[i] - m[i]).abs() < 1e-12);
+        }
+    }
+
+    /// ψ = 36°, eccentricity 0.1, f_t0 = 2.9 MPa (the W10 concrete's potential).
+    fn psi36() -> Potential {
+        let tan_psi = 36f64.to_radians().tan();
+        Potential {
+            tan_psi,
+            hyper: 0.1 * 2.9e6 * tan_psi,
+        }
+    }
+
+    #[test]
+    fn a_return_to_q_is_the_return_of_its_explicit_dlam() {
+        let pot = psi36();
+        let (k, mu) = (16e9, 13e9);
+        for trial in [[5e6, -1e6, -8e6], [4e6, 3.9e6, 3.8e6], [1e5, -2e4, -3e4]] {
+            let split = TrialSplit::of(&trial);
+            // No return at q = qᵗʳ, exactly.
+            let (s, _, dlam) = pot.returned_at_q(&split, split.q, k, mu);
+            assert_eq!(dlam, 0.0);
+            assert_eq!(
+                s,
+                [
+                    split.mean + split.dev[0],
+                    split.mean + split.dev[1],
+                    split.mean + split.dev[2]
+                ]
+            );
+            for frac in [1e-6, 0.01, 0.3, 0.9, 0.999999] {
+                let q = frac * split.q;
+                let (s, m, dlam) = pot.returned_at_q(&split, q, k, mu);
+                assert!(dlam > 0.0 && dlam.is_finite(), "{dlam}");
+                // The same return driven by its Δλ: the deviator shrinks to q again.
+                let (s2, m2, q2) = pot.returned_from(&split, dlam, k, mu);
+                assert!((q2 - q).abs() <= 1e-12 * split.q, "{frac}: {q2} vs {q}");
+                for i in 0..3 {
+                    assert!((s2[i] - s[i]).abs() <= 1e-9 * split.q.max(split.mean.abs()));
+                    assert!((m2[i] - m[i]).abs() <= 1e-9, "{frac} {i}: {m2:?} vs {m:?}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn q_below_bounds_the_shrunk_deviator_from_below() {
+        let pot = psi36();
+        for q_tr in [1e-3, 1e4, 2e5, 3e6, 5e7] {
+            let mut c = 1e-3;
+            while c < 1e12 {
+                let root = pot.shrink(q_tr, c);
+                let below = pot.q_below(q_tr, c);
+                assert!(
+                    below > 0.0 && below <= root * (1.0 + 1e-14),
+                    "{q_tr} {c}: {below} > {root}"
+                );
+                c *= 7.0;
+            }
         }
     }
 

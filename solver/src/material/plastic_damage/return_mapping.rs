@@ -11,6 +11,11 @@
 //! principal plastic strain rate positive). The local system is thereby condensed to one
 //! scalar equation F(Δλ) = 0 of eq. (25), solved by a bracketing Anderson–Björck
 //! (regula falsi) iteration: bounded, derivative free, and always left on the admissible side F ≤ 0.
+//!
+//! The iteration runs on the returned q = √(3J̄₂) rather than on Δλ whenever the trial has
+//! a deviator: Δλ is explicit in q ([`Potential::returned_at_q`]) while q in Δλ is the root
+//! of a quartic, so each evaluation of F is a closed form instead of an inner Newton
+//! iteration (−10 % of the damaging plastic-damage cube's time, docs/benchmarks.md).
 
 use super::hardening::SofteningLaw;
 use super::potential::{Potential, TrialSplit};
@@ -110,6 +115,21 @@ impl LocalProblem<'_> {
         let (s, m, q) = self
             .potential
             .returned_from(trial, dlam, self.bulk, self.mu);
+        self.hardened(start, s, m, q, dlam)
+    }
+
+    /// [`Self::evaluate`] of the return that leaves √(3J̄₂) = q (qᵗʳ ≥ q > 0), its Δλ
+    /// explicit ([`Potential::returned_at_q`]).
+    #[inline]
+    fn evaluate_at_q(&self, trial: &TrialSplit, start: &Start, q: f64) -> Returned {
+        let (s, m, dlam) = self.potential.returned_at_q(trial, q, self.bulk, self.mu);
+        self.hardened(start, s, m, q, dlam)
+    }
+
+    /// The hardening variables and F after a return of size Δλ to principal stress `s`
+    /// (√(3J̄₂) = q) with flow direction `m`.
+    #[inline(always)]
+    fn hardened(&self, start: &Start, s: [f64; 3], m: [f64; 3], q: f64, dlam: f64) -> Returned {
         let r = tension_weight(&s);
         let y_t = start.y_t + self.b_t * r * dlam * m[0].max(0.0);
         let y_c = start.y_c + self.b_c * (1.0 - r) * dlam * (-m[2]).max(0.0);
@@ -128,6 +148,11 @@ impl LocalProblem<'_> {
 
     /// Return the sorted principal trial stress `trial` (with F(trial) > 0) to the yield
     /// surface from the hardening state `start` ([`Self::start`]).
+    ///
+    /// The unknown is q = √(3J̄₂) of the returned stress when the trial has a deviator —
+    /// each evaluation then explicit ([`Potential::returned_at_q`]) — and Δλ itself for a
+    /// hydrostatic trial (q stays 0). Either way the iteration runs on a variable x that
+    /// grows with Δλ (x = −q, or x = Δλ) from the trial's x₀ (F > 0).
     pub fn solve(&self, trial: &[f64; 3], start: &Start) -> Returned {
         let split = TrialSplit::of(trial);
         // F(trial) = `surface.value(trial, ..)`, with the split's √(3J̄₂)
@@ -146,11 +171,42 @@ impl LocalProblem<'_> {
                 ..self.evaluate(trial, start, 0.0)
             };
         }
-        // Bracket: F(0) > 0; expand Δλ geometrically from an elastic-slope estimate until
-        // F ≤ 0 (F → −∞ as Δλ → ∞ because the mean stress falls as K Δλ tan ψ).
-        let (mut a, mut fa) = (0.0, f_tr);
-        let mut hi = (f_tr / (3.0 * self.mu)).max(f64::MIN_POSITIVE);
-        let mut at_hi = self.evaluate(trial, start, hi);
+        let three_mu = 3.0 * self.mu;
+        if trial.q > 0.0 {
+            // x = −q; the k-th bracket probe is the q of a return with 3μΔλ ≥ 4ᵏ F(trial)
+            // ([`Potential::q_below`]).
+            self.bracket_and_refine(
+                -trial.q,
+                f_tr,
+                |c| -self.potential.q_below(trial.q, c),
+                |x| self.evaluate_at_q(trial, start, -x),
+            )
+        } else {
+            self.bracket_and_refine(
+                0.0,
+                f_tr,
+                |c| (c / three_mu).max(f64::MIN_POSITIVE),
+                |x| self.evaluate(trial, start, x),
+            )
+        }
+    }
+
+    /// Root of F(x) = 0 for F decreasing in x with F(`x0`) = `f0` > 0: probes
+    /// `probe(c)` for c = F(trial), 4 F(trial), 16 F(trial), … until F ≤ 0 (F → −∞ as
+    /// Δλ → ∞ because the mean stress falls as K Δλ tan ψ), then a bracketing
+    /// Anderson–Björck regula falsi, always left on the admissible side F ≤ 0.
+    #[inline(always)]
+    fn bracket_and_refine(
+        &self,
+        x0: f64,
+        f0: f64,
+        probe: impl Fn(f64) -> f64,
+        at: impl Fn(f64) -> Returned,
+    ) -> Returned {
+        let (mut a, mut fa) = (x0, f0);
+        let mut c = f0;
+        let mut hi = probe(c);
+        let mut at_hi = at(hi);
         let mut expanded = 0;
         // (written so that a NaN F also enters the loop and returns)
         while at_hi.f.is_nan() || at_hi.f > 0.0 {
@@ -163,8 +219,9 @@ impl LocalProblem<'_> {
             }
             a = hi;
             fa = at_hi.f;
-            hi *= 4.0;
-            at_hi = self.evaluate(trial, start, hi);
+            c *= 4.0;
+            hi = probe(c);
+            at_hi = at(hi);
             expanded += 1;
         }
         if at_hi.f.abs() <= self.tol {
@@ -176,41 +233,41 @@ impl LocalProblem<'_> {
         let mut best = at_hi;
         let mut side = 0i8;
         for _ in 0..self.max_iter {
-            let mut c = (a * fb - b * fa) / (fb - fa);
-            if !(c > a && c < b) {
-                c = 0.5 * (a + b);
+            let mut x = (a * fb - b * fa) / (fb - fa);
+            if !(x > a && x < b) {
+                x = 0.5 * (a + b);
             }
-            let at_c = self.evaluate(trial, start, c);
-            if !at_c.f.is_finite() {
+            let at_x = at(x);
+            if !at_x.f.is_finite() {
                 break;
             }
-            if at_c.f.abs() <= self.tol {
+            if at_x.f.abs() <= self.tol {
                 return Returned {
                     converged: true,
-                    ..at_c
+                    ..at_x
                 };
             }
             // Anderson–Björck: when the same end is kept twice, scale its value by
-            // 1 − F(c)/F(replaced end) (0.5 when that is not positive).
-            if at_c.f > 0.0 {
+            // 1 − F(x)/F(replaced end) (0.5 when that is not positive).
+            if at_x.f > 0.0 {
                 if side == 1 {
-                    let k = 1.0 - at_c.f / fa;
+                    let k = 1.0 - at_x.f / fa;
                     fb *= if k > 0.0 { k } else { 0.5 };
                 }
-                a = c;
-                fa = at_c.f;
+                a = x;
+                fa = at_x.f;
                 side = 1;
             } else {
                 if side == -1 {
-                    let k = 1.0 - at_c.f / fb;
+                    let k = 1.0 - at_x.f / fb;
                     fa *= if k > 0.0 { k } else { 0.5 };
                 }
-                b = c;
-                fb = at_c.f;
-                best = at_c;
+                b = x;
+                fb = at_x.f;
+                best = at_x;
                 side = -1;
             }
-            if b - a <= 4.0 * f64::EPSILON * b {
+            if b - a <= 4.0 * f64::EPSILON * b.abs() {
                 // F jumps across the root (the weight r is discontinuous at σ̄ = 0): the
                 // admissible end of the collapsed bracket is the answer.
                 return Returned {

@@ -532,6 +532,26 @@ fn large_increments_stay_finite_and_admissible() {
 }
 
 #[test]
+fn a_hydrostatic_trial_returns_along_the_mean_stress() {
+    // No deviator: q stays 0 and the local solve iterates on Δλ itself (the q form has
+    // nothing to parametrise). Hydrostatic tension far outside the surface.
+    let m = w10();
+    let pb = m.problem(0.5);
+    let start = pb.start(0.0, 0.0);
+    let ret = pb.solve(&[1e7, 1e7, 1e7], &start);
+    assert!(ret.converged && ret.f.abs() <= pb.tol, "{ret:?}");
+    assert!(ret.dlam > 0.0 && ret.y_t > 0.0 && ret.y_c == 0.0, "{ret:?}");
+    assert!(ret.m[0] == ret.m[1] && ret.m[1] == ret.m[2], "{ret:?}");
+    // With a deviator of a few pascals the q form takes over and lands on the same return.
+    let near = pb.solve(&[1e7 + 4.0, 1e7, 1e7 - 4.0], &start);
+    assert!(near.converged && near.f.abs() <= pb.tol, "{near:?}");
+    assert!(
+        (near.dlam - ret.dlam).abs() <= 1e-6 * ret.dlam,
+        "{near:?} vs {ret:?}"
+    );
+}
+
+#[test]
 fn compression_unloading_slope_and_plastic_dilatancy() {
     // After crushing past the peak: unloading slope (1 − D_c) E0 (1 %), and the lateral to
     // axial plastic strain ratio of the potential (eq. 26) in uniaxial compression,

@@ -138,6 +138,18 @@ struct Internal {
     y_c: f64,
 }
 
+impl Internal {
+    /// The internal variables held by the state `state`.
+    #[inline(always)]
+    fn of(state: &[f64]) -> Self {
+        Self {
+            plastic: voigt(&state[slot::PLASTIC..]),
+            y_t: state[slot::Y_T],
+            y_c: state[slot::Y_C],
+        }
+    }
+}
+
 impl PlasticDamage {
     /// Validate the parameters of material `name` (errors: [`DcfmError::Material`]).
     pub fn new(name: &str, elastic: Elastic, p: &PlasticDamageParams) -> Result<Self> {
@@ -367,8 +379,43 @@ impl PlasticDamage {
             if let Some(sig) = self.virgin_elastic(strain, old, new, l) {
                 return sig;
             }
+        } else if let Some(sig) = self.yielded_elastic(strain, old, new, l) {
+            return sig;
         }
         self.general_update(strain, old, new, ctx.dt, l)
+    }
+
+    /// The update of a point that has yielded (y_t or y_c > 0) and whose trial stress is
+    /// inside its current surface by a margin ([`VIRGIN_MARGIN`] of c̄_c, the invariant
+    /// bound of [`YieldSurface::surely_inside`]): the internal variables stay, σ̄ =
+    /// E₀ : (ε − εᵖ), and the nominal stress, D and the dissipation are those of
+    /// [`Self::general_update`] for an unchanged state ([`Self::commit`], the same code).
+    /// Skipped: the local problem's set-up, the sub-step loop and its trial stress. Bit
+    /// for bit what the general path gives, as for [`Self::virgin_elastic`] — that path
+    /// finds the trial elastic too (the margin covers its trial strain ε₀ + 1·(ε − ε₀),
+    /// which may differ from ε by rounding) and then keeps the start state. The branch
+    /// most points of a damaged region take in most steps. `None`: take the general path.
+    #[inline]
+    fn yielded_elastic(
+        &self,
+        strain: &Voigt,
+        old: &[f64],
+        new: &mut [f64],
+        l: f64,
+    ) -> Option<Voigt> {
+        let start = Internal::of(old);
+        let eff = self.elastic.stress(&sub(strain, &start.plastic));
+        let (t, c) = self.element_laws(l);
+        let (beta, limit) = virgin_bound(
+            &self.surface,
+            t.law.effective(start.y_t),
+            c.law.effective(start.y_c),
+        );
+        if !(beta >= 0.0 && virgin_bracket(&self.surface, beta, &eff) <= limit) {
+            return None;
+        }
+        let laws = [(&t.law, t.g), (&c.law, c.g)];
+        Some(self.commit(strain, old, new, &start, &start, eff, laws))
     }
 
     /// [`Self::update`] by the return mapping (no shortcut) at characteristic length `l`.
@@ -381,11 +428,7 @@ impl PlasticDamage {
         l: f64,
     ) -> Voigt {
         let pb = self.problem(l);
-        let start = Internal {
-            plastic: voigt(&old[slot::PLASTIC..]),
-            y_t: old[slot::Y_T],
-            y_c: old[slot::Y_C],
-        };
+        let start = Internal::of(old);
         let eps0 = voigt(&old[slot::STRAIN..]);
         let mut st = self.integrate(&pb, &eps0, strain, &start);
 
@@ -403,8 +446,29 @@ impl PlasticDamage {
             st.y_c = start.y_c + w * (st.y_c - start.y_c);
         }
 
-        let (t, c) = (&pb.tension, &pb.compression);
         let eff = self.elastic.stress(&sub(strain, &st.plastic));
+        let laws = [(&pb.tension, pb.g_t), (&pb.compression, pb.g_c)];
+        self.commit(strain, old, new, &start, &st, eff, laws)
+    }
+
+    /// The new state `new` and the nominal stress of a point that moved from `start`
+    /// (state `old`) to `st` with effective stress `eff` = E₀ : (ε − εᵖ) at strain
+    /// `strain`, for the element laws `laws` (tension, compression: the softening law and
+    /// its dissipation density g of [`ElementLaw`]): the tail of
+    /// [`Self::general_update`] (eqs. 23–24 and the tracked energies).
+    #[allow(clippy::too_many_arguments)]
+    #[inline(always)]
+    fn commit(
+        &self,
+        strain: &Voigt,
+        old: &[f64],
+        new: &mut [f64],
+        start: &Internal,
+        st: &Internal,
+        eff: Voigt,
+        laws: [(&SofteningLaw, f64); 2],
+    ) -> Voigt {
+        let [(t, g_t), (c, g_c)] = laws;
         let (sig, d, d_t) = self.nominal(&eff, st.y_t, st.y_c);
         new[slot::PLASTIC..slot::PLASTIC + 6].copy_from_slice(&st.plastic);
         new[slot::STRAIN..slot::STRAIN + 6].copy_from_slice(strain);
@@ -413,10 +477,10 @@ impl PlasticDamage {
         new[slot::DAMAGE] = d;
         let mut w = old[slot::FRACTURE];
         if st.y_t != start.y_t {
-            w += pb.g_t * (t.kappa(st.y_t) - t.kappa(start.y_t));
+            w += g_t * (t.kappa(st.y_t) - t.kappa(start.y_t));
         }
         if st.y_c != start.y_c {
-            w += pb.g_c * (c.kappa(st.y_c) - c.kappa(start.y_c));
+            w += g_c * (c.kappa(st.y_c) - c.kappa(start.y_c));
         }
         new[slot::FRACTURE] = w;
         // Total dissipation: trapezoidal work ½(σₙ + σₙ₊₁):Δε minus the change of the
@@ -430,6 +494,7 @@ impl PlasticDamage {
         } else {
             // σₙ as the last update returned it: stress_from_state(ε₀, old) bit for bit.
             let sig0 = voigt(&old[slot::STRESS..]);
+            let eps0 = voigt(&old[slot::STRAIN..]);
             let work = 0.5 * dot(&add(&sig0, &sig), &sub(strain, &eps0));
             let psi0 = 0.5 * dot(&sig0, &sub(&eps0, &start.plastic));
             let psi1 = 0.5 * dot(&sig, &sub(strain, &st.plastic));

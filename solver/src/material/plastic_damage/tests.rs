@@ -863,6 +863,64 @@ fn consistent_recovery_stays_close_to_the_uniaxial_laws() {
     }
 }
 
+/// A fixed pseudo-random sequence (xorshift) uniform in [−1, 1) from `seed`.
+fn xorshift(mut seed: u64) -> impl FnMut() -> f64 {
+    move || {
+        seed ^= seed << 13;
+        seed ^= seed >> 7;
+        seed ^= seed << 17;
+        (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
+    }
+}
+
+/// The W10 material under each rule the shortcuts must match the general update for: both
+/// regularisations, both recovery rules, and with viscosity.
+fn shortcut_rules() -> Vec<(Regularisation, Recovery, PlasticDamage)> {
+    [
+        (Regularisation::Plastic, Recovery::LeeFenves, 0.0),
+        (Regularisation::Total, Recovery::LeeFenves, 0.0),
+        (Regularisation::Plastic, Recovery::Consistent, 0.0),
+        (Regularisation::Plastic, Recovery::LeeFenves, 1e-3),
+    ]
+    .into_iter()
+    .map(|(reg, rec, viscosity)| {
+        let el = Elastic::new("w10", E0, NU, 2400.0).unwrap();
+        let params = PlasticDamageParams {
+            regularisation: reg,
+            recovery: rec,
+            viscosity,
+            ..PlasticDamageParams::from_strengths(FT0, FC0, FC, GT, GC)
+        };
+        (reg, rec, PlasticDamage::new("w10", el, &params).unwrap())
+    })
+    .collect()
+}
+
+/// `update`, `general_update` and `update_in_place` of `old` at `strain` give the same
+/// stress and state bit for bit, and the in-place update says whether the hardening
+/// moved: the general update's new state and that flag.
+fn updates_agree(
+    m: &PlasticDamage,
+    strain: &Voigt,
+    old: &[f64],
+    ctx: &PointContext,
+    label: &str,
+) -> (Vec<f64>, bool) {
+    let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
+    let mut a = vec![0.0; m.state_len()];
+    let mut b = vec![0.0; m.state_len()];
+    let sa = m.update(strain, old, &mut a, ctx);
+    let sb = m.general_update(strain, old, &mut b, ctx.dt, ctx.char_length);
+    assert_eq!(bits(&sa), bits(&sb), "{label}: stress at {strain:?}");
+    assert_eq!(bits(&a), bits(&b), "{label}: state at {strain:?}");
+    let mut in_place = old.to_vec();
+    let (si, moved) = m.update_in_place(strain, &mut in_place, ctx);
+    assert_eq!(bits(&si), bits(&sa), "{label}: in place at {strain:?}");
+    assert_eq!(bits(&in_place), bits(&a), "{label}: in place at {strain:?}");
+    assert_eq!(moved, m.hardening_moved(old, &a));
+    (b, moved)
+}
+
 /// The shortcut for never-yielded points (`virgin_elastic`) gives bit for bit what the
 /// return mapping gives, under both regularisations and recovery rules, with viscosity;
 /// it is taken for most elastic states and never for one that yields. The update in place
@@ -871,32 +929,8 @@ fn consistent_recovery_stays_close_to_the_uniaxial_laws() {
 fn virgin_elastic_shortcut_is_the_general_update_bit_for_bit() {
     // A fixed pseudo-random sequence (xorshift) of strain directions and sizes around the
     // yield strains: ε_t0 = f_t0/E₀ ≈ 9e-5, ε_c0 ≈ 4e-4.
-    let mut seed: u64 = 0x9e37_79b9_7f4a_7c15;
-    let mut uniform = move || {
-        seed ^= seed << 13;
-        seed ^= seed >> 7;
-        seed ^= seed << 17;
-        (seed >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0
-    };
-    let rules = [
-        (Regularisation::Plastic, Recovery::LeeFenves, 0.0),
-        (Regularisation::Total, Recovery::LeeFenves, 0.0),
-        (Regularisation::Plastic, Recovery::Consistent, 0.0),
-        (Regularisation::Plastic, Recovery::LeeFenves, 1e-3),
-    ];
-    for (reg, rec, viscosity) in rules {
-        let el = Elastic::new("w10", E0, NU, 2400.0).unwrap();
-        let m = PlasticDamage::new(
-            "w10",
-            el,
-            &PlasticDamageParams {
-                regularisation: reg,
-                recovery: rec,
-                viscosity,
-                ..PlasticDamageParams::from_strengths(FT0, FC0, FC, GT, GC)
-            },
-        )
-        .unwrap();
+    let mut uniform = xorshift(0x9e37_79b9_7f4a_7c15);
+    for (reg, rec, m) in shortcut_rules() {
         let (mut shortcut, mut general) = (0, 0);
         let mut moved_seen = [false; 2];
         for _ in 0..4000 {
@@ -913,31 +947,7 @@ fn virgin_elastic_shortcut_is_the_general_update_bit_for_bit() {
                 char_length: 0.05 + 2.0 * uniform().abs(),
                 dt: 1e-4,
             };
-            let mut a = vec![0.0; m.state_len()];
-            let mut b = vec![0.0; m.state_len()];
-            let sa = m.update(&strain, &old, &mut a, &ctx);
-            let sb = m.general_update(&strain, &old, &mut b, ctx.dt, ctx.char_length);
-            let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
-            assert_eq!(
-                bits(&sa),
-                bits(&sb),
-                "{reg:?} {rec:?}: stress at {strain:?}"
-            );
-            assert_eq!(bits(&a), bits(&b), "{reg:?} {rec:?}: state at {strain:?}");
-            // In place: the same stress and state, and whether the hardening moved.
-            let mut in_place = old.clone();
-            let (si, moved) = m.update_in_place(&strain, &mut in_place, &ctx);
-            assert_eq!(
-                bits(&si),
-                bits(&sa),
-                "{reg:?} {rec:?}: in place at {strain:?}"
-            );
-            assert_eq!(
-                bits(&in_place),
-                bits(&a),
-                "{reg:?} {rec:?}: in place at {strain:?}"
-            );
-            assert_eq!(moved, m.hardening_moved(&old, &a));
+            let (b, moved) = updates_agree(&m, &strain, &old, &ctx, &format!("{reg:?} {rec:?}"));
             moved_seen[usize::from(moved)] = true;
             let mut c = vec![0.0; m.state_len()];
             if m.virgin_elastic(&strain, &old, &mut c, ctx.char_length)
@@ -954,6 +964,57 @@ fn virgin_elastic_shortcut_is_the_general_update_bit_for_bit() {
         assert_eq!(moved_seen, [true, true], "{reg:?} {rec:?}");
         assert!(
             shortcut > 1000 && general > 500,
+            "{reg:?} {rec:?}: {shortcut} / {general}"
+        );
+    }
+}
+
+/// The shortcut of a yielded point that stays elastic ([`PlasticDamage::yielded_elastic`])
+/// gives what the general update gives, bit for bit, on and off place, under both
+/// regularisations, both recovery rules and with viscosity; draws from yielded states
+/// (tension, compression or both) by small strain steps that load and unload.
+#[test]
+fn yielded_elastic_shortcut_is_the_general_update_bit_for_bit() {
+    let mut uniform = xorshift(0x2545_f491_4f6c_dd1d);
+    for (reg, rec, m) in shortcut_rules() {
+        let (mut shortcut, mut general, mut yielded) = (0, 0, [false; 2]);
+        for _ in 0..6000 {
+            let ctx = PointContext {
+                char_length: 0.05 + 2.0 * uniform().abs(),
+                dt: 1e-4,
+            };
+            // A yielded state: one general update from the virgin state past the surface.
+            let mut virgin = vec![0.0; m.state_len()];
+            m.init_state(&mut virgin);
+            let size = 8e-4 * uniform().abs();
+            let first: Voigt = std::array::from_fn(|_| size * uniform());
+            let mut old = vec![0.0; m.state_len()];
+            m.general_update(&first, &virgin, &mut old, ctx.dt, ctx.char_length);
+            if old[slot::Y_T] == 0.0 && old[slot::Y_C] == 0.0 {
+                continue;
+            }
+            yielded[0] |= old[slot::Y_T] > 0.0;
+            yielded[1] |= old[slot::Y_C] > 0.0;
+            // The elastic strain scaled by 1 − 0.6|u| (unloading) and a random step.
+            let back = 1.0 - 0.6 * uniform().abs();
+            let strain: Voigt = std::array::from_fn(|i| {
+                let p = old[slot::PLASTIC + i];
+                p + back * (first[i] - p) + 1e-6 * uniform()
+            });
+            let (b, _) = updates_agree(&m, &strain, &old, &ctx, &format!("{reg:?} {rec:?}"));
+            let mut c = vec![0.0; m.state_len()];
+            if m.yielded_elastic(&strain, &old, &mut c, ctx.char_length)
+                .is_some()
+            {
+                shortcut += 1;
+                assert!(!m.hardening_moved(&old, &b));
+            } else {
+                general += 1;
+            }
+        }
+        assert_eq!(yielded, [true, true], "{reg:?} {rec:?}");
+        assert!(
+            shortcut > 200 && general > 200,
             "{reg:?} {rec:?}: {shortcut} / {general}"
         );
     }

@@ -74,12 +74,14 @@ mod slot {
 pub const STATE_LEN: usize = slot::LEN;
 
 /// Margin below zero, relative to c̄_c, of the yield bound under which
-/// [`PlasticDamage::virgin_elastic`] takes a never-yielded point as elastic: far above the
-/// rounding of F (≈ 1e-16 of the stress), far below any physical distance to the surface.
+/// [`PlasticDamage::virgin_elastic`] takes a never-yielded point, and
+/// [`PlasticDamage::yielded_elastic`] a yielded one, as elastic: far above the rounding of
+/// F (≈ 1e-16 of the stress), far below any physical distance to the surface.
 const VIRGIN_MARGIN: f64 = 1e-9;
 
 /// β and the bracket limit (1 − α)(1 − [`VIRGIN_MARGIN`]) c̄_c of eq. (25) for the
-/// effective cohesions `ct`, `cc` of a never-yielded point.
+/// effective cohesions `ct`, `cc` (c̄(0) for a never-yielded point, c̄(y) of its
+/// hardening for a yielded one).
 fn virgin_bound(surface: &YieldSurface, ct: f64, cc: f64) -> (f64, f64) {
     (
         surface.beta(ct, cc),
@@ -88,7 +90,7 @@ fn virgin_bound(surface: &YieldSurface, ct: f64, cc: f64) -> (f64, f64) {
 }
 
 /// Upper bound of the bracket of eq. (25) at effective stress `eff` and β (one point, or one
-/// per lane), for the never-yielded check: F ≤ −margin c̄_c ⇔ bracket ≤ (1 − α)(1 − margin) c̄_c,
+/// per lane), for the elastic shortcuts' check: F ≤ −margin c̄_c ⇔ bracket ≤ (1 − α)(1 − margin) c̄_c,
 /// with σ̂_max ≤ Ī₁/3 + (2/3)√(3J̄₂) (F does not decrease with σ̂_max when β ≥ 0). A decision
 /// with a margin: products instead of the quotients of `invariants`.
 #[inline(always)]

@@ -358,7 +358,7 @@ fn group() -> impl Strategy<Value = Group> {
                 0.0f64..1e-3,
                 vec3(100.0),
             ),
-            1..6,
+            1..16,
         ),
     )
         .prop_map(|(dt, mus, frac, w_master, warp, slaves)| {

@@ -235,6 +235,7 @@ impl ContactSystem {
         st.max_system = st.max_system.max(sys.active.len() as u64);
         st.max_active_set_solves = st.max_active_set_solves.max(solves as u64);
         st.max_polish_sweeps = st.max_polish_sweeps.max(sweeps as u64);
+        st.polish_sweeps += sweeps as u64;
         for a in &sys.active {
             surface::apply_force(a, r, &mut sys.touched);
         }

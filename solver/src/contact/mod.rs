@@ -35,6 +35,7 @@
 //! where the paper is terse.
 
 mod activity;
+mod anderson;
 mod checkpoint;
 mod face_bins;
 mod interface;
@@ -129,6 +130,8 @@ pub struct JointStats {
     pub max_active_set_solves: u64,
     /// Most polish sweeps of one direct solve.
     pub max_polish_sweeps: u64,
+    /// Polish sweeps of all direct solves.
+    pub polish_sweeps: u64,
     /// Fallback steps whose sweeps, already within the accepted change, drifted (their
     /// change grew for `DRIFT_SWEEPS` sweeps in a row) and were stopped there as unsettled.
     pub drift_stops: u64,

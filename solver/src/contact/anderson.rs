@@ -79,8 +79,7 @@ impl Anderson {
                 (0..DEPTH).find(|s| !used.contains(s)).unwrap_or(0)
             } else {
                 let s = self.order[0];
-                self.order.copy_within(1..DEPTH, 0);
-                self.cols -= 1;
+                self.drop_oldest();
                 s
             };
             for i in 0..n {
@@ -112,8 +111,7 @@ impl Anderson {
                 break;
             }
             // Too ill-conditioned: drop the oldest difference and try again.
-            self.order.copy_within(1..DEPTH, 0);
-            self.cols -= 1;
+            self.drop_oldest();
         }
         x.copy_from_slice(g);
         for c in 0..self.cols {
@@ -124,6 +122,12 @@ impl Anderson {
             }
         }
         true
+    }
+
+    /// Forget the oldest kept difference (its slot becomes free).
+    fn drop_oldest(&mut self) {
+        self.order.copy_within(1..DEPTH, 0);
+        self.cols -= 1;
     }
 
     fn column(&self, slot: usize) -> &[f64] {
@@ -229,39 +233,34 @@ mod tests {
                 .map(|(a, b)| (a - b).abs())
                 .fold(0.0, f64::max)
         };
-        let mut x = vec![0.0; n];
-        let mut plain = 0;
-        for k in 1..=5000 {
-            let g = apply(&x);
-            if residual(&x, &g) < 1e-12 {
-                plain = k;
-                break;
+        // Iterations until the change falls below 1e-12 (0: not within `limit`), and the
+        // last iterate; accelerated or plain.
+        let settle = |accelerate: bool, limit: usize| -> (usize, Vec<f64>, usize) {
+            let mut aa = Anderson::default();
+            aa.reset(n);
+            let mut x = vec![0.0; n];
+            for k in 1..=limit {
+                let g = apply(&x);
+                if residual(&x, &g) < 1e-12 {
+                    return (k, x, aa.columns());
+                }
+                if accelerate {
+                    aa.step(&mut x, &g);
+                } else {
+                    x = g;
+                }
             }
-            x = g;
-        }
-        let mut aa = Anderson::default();
-        aa.reset(n);
-        x.fill(0.0);
-        let mut iterations = 0;
-        for k in 1..=200 {
-            let g = apply(&x);
-            if residual(&x, &g) < 1e-12 {
-                iterations = k;
-                break;
-            }
-            aa.step(&mut x, &g);
-        }
+            (0, x, aa.columns())
+        };
+        let (plain, _, _) = settle(false, 5000);
+        let (iterations, x, columns) = settle(true, 200);
         assert!(plain > 500, "plain iteration: {plain} iterations");
         assert!(
             iterations > 0 && iterations < plain / 5,
             "{iterations} accelerated iterations against {plain} plain"
         );
-        let err = x
-            .iter()
-            .zip(&exact)
-            .map(|(a, b)| (a - b).abs())
-            .fold(0.0, f64::max);
+        let err = residual(&x, &exact);
         assert!(err < 1e-9, "error {err}");
-        assert!(aa.columns() <= DEPTH);
+        assert!(columns <= DEPTH);
     }
 }

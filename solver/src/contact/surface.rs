@@ -426,7 +426,10 @@ fn polish(s: &mut Scratch, dt: f64) -> std::result::Result<usize, String> {
         // Whether a constraint changed its mode, lost its bond or slid for the first time:
         // the sweep is then another map than the last one's, and the acceleration restarts.
         let mut switched = false;
-        gather_forces(&s.active, &mut s.sweep_in);
+        let accelerating = switches_after_acceleration < ACCELERATED_SWITCHES;
+        if accelerating {
+            gather_forces(&s.active, &mut s.sweep_in);
+        }
         for i in 0..m {
             if s.active[i].fixed {
                 continue;
@@ -506,7 +509,7 @@ fn polish(s: &mut Scratch, dt: f64) -> std::result::Result<usize, String> {
             accelerated = false;
             continue;
         }
-        if switches_after_acceleration >= ACCELERATED_SWITCHES {
+        if !accelerating {
             continue;
         }
         // The next sweep starts from the accelerated iterate (its own output is what

@@ -56,6 +56,20 @@ fn material_update(c: &mut Criterion) {
     g.bench_function("plastic_damage_cracked_elastic_mixed", |b| {
         b.iter(|| pd.update(black_box(&unloading), black_box(&cracked), &mut next, &ctx))
     });
+    // The cracked point a hair inside its current surface (its elastic strain scaled by
+    // 0.999): elastic, but beyond the reach of the invariant bound σ̂_max ≤ Ī₁/3 +
+    // (2/3)√(3J̄₂) — the points of a damaged region that stay near their surface.
+    let plastic = pd.plastic_strain(&cracked);
+    let near: [f64; 6] = std::array::from_fn(|i| plastic[i] + 0.999 * (crack[i] - plastic[i]));
+    pd.update(&near, &cracked, &mut next, &ctx);
+    assert_eq!(
+        pd.plastic_strain(&next),
+        plastic,
+        "the strain near the surface must stay elastic"
+    );
+    g.bench_function("plastic_damage_cracked_elastic_near_surface", |b| {
+        b.iter(|| pd.update(black_box(&near), black_box(&cracked), &mut next, &ctx))
+    });
     g.finish();
 }
 

@@ -110,6 +110,20 @@ fn virgin_bracket<T: Lane>(surface: &YieldSurface, beta: T, eff: &[T; 6]) -> T {
         - T::splat(surface.gamma) * (-smax).max(zero)
 }
 
+/// Allowance on the bracket of eq. (25) evaluated at closed-form principal values
+/// `values` (sorted), for [`PlasticDamage::yielded_elastic`]'s exact test: the general
+/// path evaluates the bracket at the principal values of its own trial stress, which
+/// may differ from these by the closed form's rounding (up to ~1e-11 of the largest
+/// |σ̂ᵢ| near a double root, [`principal_values`]) and by the rounding of its trial
+/// strain; the bracket moves by at most (1 + |β| + γ) times that. 1e-9 of the
+/// largest |σ̂ᵢ| per unit of that slope: a hundred times the rounding, far below any
+/// physical distance to the surface.
+#[inline(always)]
+fn exact_bracket_margin(surface: &YieldSurface, beta: f64, values: &[f64; 3]) -> f64 {
+    let largest = values[0].abs().max(values[2].abs());
+    (1.0 + surface.alpha.abs() + beta.abs() + surface.gamma.abs()) * 1e-9 * largest
+}
+
 /// Sub-step counts tried in turn when a return does not converge.
 const SUBSTEPS: [usize; 4] = [1, 4, 16, 64];
 
@@ -388,15 +402,20 @@ impl PlasticDamage {
     }
 
     /// The update of a point that has yielded (y_t or y_c > 0) and whose trial stress is
-    /// inside its current surface by a margin ([`VIRGIN_MARGIN`] of c̄_c, the invariant
-    /// bound of [`YieldSurface::surely_inside`]): the internal variables stay, σ̄ =
+    /// inside its current surface by a margin: the internal variables stay, σ̄ =
     /// E₀ : (ε − εᵖ), and the nominal stress, D and the dissipation are those of
     /// [`Self::general_update`] for an unchanged state ([`Self::commit`], the same code).
-    /// Skipped: the local problem's set-up, the sub-step loop and its trial stress. Bit
-    /// for bit what the general path gives, as for [`Self::virgin_elastic`] — that path
-    /// finds the trial elastic too (the margin covers its trial strain ε₀ + 1·(ε − ε₀),
-    /// which may differ from ε by rounding) and then keeps the start state. The branch
-    /// most points of a damaged region take in most steps. `None`: take the general path.
+    /// Skipped: the local problem's set-up, the sub-step loop, its trial stress and the
+    /// return mapping's own check. Two tests, the cheap one first: the invariant bound of
+    /// [`YieldSurface::surely_inside`] ([`VIRGIN_MARGIN`] of c̄_c); failing it (a point
+    /// near its surface, where σ̂_max ≤ Ī₁/3 + (2/3)√(3J̄₂) is loose), eq. (25) at the
+    /// exact principal values ([`exact_bracket_margin`]), which [`Self::commit`] then
+    /// reuses for the recovery. Bit for bit what the general path gives, as for
+    /// [`Self::virgin_elastic`] — that path finds the trial elastic too (the margins
+    /// cover its trial strain ε₀ + 1·(ε − ε₀), which may differ from ε by rounding, and
+    /// the rounding of the closed-form principal values) and then keeps the start state.
+    /// The branch most points of a damaged region take in most steps. `None`: take the
+    /// general path.
     #[inline]
     fn yielded_elastic(
         &self,
@@ -413,11 +432,25 @@ impl PlasticDamage {
             t.law.effective(start.y_t),
             c.law.effective(start.y_c),
         );
-        if !(beta >= 0.0 && virgin_bracket(&self.surface, beta, &eff) <= limit) {
+        // The bound needs F non-decreasing in σ̂_max (β ≥ 0): any other point (β < 0 or
+        // NaN) takes the general path, as it always has.
+        let monotone = beta >= 0.0;
+        if !monotone {
             return None;
         }
         let laws = [(&t.law, t.g), (&c.law, c.g)];
-        Some(self.commit(strain, old, new, &start, &start, eff, laws))
+        if virgin_bracket(&self.surface, beta, &eff) <= limit {
+            return Some(self.commit(strain, old, new, &start, &start, eff, laws, None));
+        }
+        let values = principal_values(&eff);
+        let (i1, q) = invariants(&eff);
+        let bracket = self.surface.alpha * i1 + q + beta * values[0].max(0.0)
+            - self.surface.gamma * (-values[0]).max(0.0);
+        let inside = bracket + exact_bracket_margin(&self.surface, beta, &values) <= limit;
+        if !inside {
+            return None;
+        }
+        Some(self.commit(strain, old, new, &start, &start, eff, laws, Some(values)))
     }
 
     /// [`Self::update`] by the return mapping (no shortcut) at characteristic length `l`.
@@ -450,14 +483,16 @@ impl PlasticDamage {
 
         let eff = self.elastic.stress(&sub(strain, &st.plastic));
         let laws = [(&pb.tension, pb.g_t), (&pb.compression, pb.g_c)];
-        self.commit(strain, old, new, &start, &st, eff, laws)
+        self.commit(strain, old, new, &start, &st, eff, laws, None)
     }
 
     /// The new state `new` and the nominal stress of a point that moved from `start`
     /// (state `old`) to `st` with effective stress `eff` = E₀ : (ε − εᵖ) at strain
     /// `strain`, for the element laws `laws` (tension, compression: the softening law and
     /// its dissipation density g of [`ElementLaw`]): the tail of
-    /// [`Self::general_update`] (eqs. 23–24 and the tracked energies).
+    /// [`Self::general_update`] (eqs. 23–24 and the tracked energies). `values`: the
+    /// principal values of `eff` when the caller has them ([`principal_values`], the
+    /// recovery's own values bit for bit), else `None`.
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn commit(
@@ -469,9 +504,14 @@ impl PlasticDamage {
         st: &Internal,
         eff: Voigt,
         laws: [(&SofteningLaw, f64); 2],
+        values: Option<[f64; 3]>,
     ) -> Voigt {
         let [(t, g_t), (c, g_c)] = laws;
-        let (sig, d, d_t) = self.nominal(&eff, st.y_t, st.y_c);
+        let mut classified = recovery::Classified::new(&eff);
+        if let Some(v) = values {
+            classified = classified.with_values(v);
+        }
+        let (sig, d, d_t) = self.nominal_of(&mut classified, st.y_t, st.y_c);
         new[slot::PLASTIC..slot::PLASTIC + 6].copy_from_slice(&st.plastic);
         new[slot::STRAIN..slot::STRAIN + 6].copy_from_slice(strain);
         new[slot::Y_T] = st.y_t;
@@ -603,15 +643,25 @@ impl PlasticDamage {
     /// whose D is reported as a diagnostic only. Third: the tensile degradation D_t(y_t).
     #[inline]
     fn nominal(&self, eff: &Voigt, y_t: f64, y_c: f64) -> (Voigt, f64, f64) {
+        self.nominal_of(&mut recovery::Classified::new(eff), y_t, y_c)
+    }
+
+    /// [`Self::nominal`] of a [`recovery::Classified`] effective stress.
+    #[inline(always)]
+    fn nominal_of(
+        &self,
+        classified: &mut recovery::Classified,
+        y_t: f64,
+        y_c: f64,
+    ) -> (Voigt, f64, f64) {
         let dt = self.constants.tension.damage(y_t);
         let dc = self.constants.compression.damage(y_c);
         let s0 = self.constants.s0;
-        let mut classified = recovery::Classified::new(eff);
-        let d = recovery::lee_fenves_damage(&mut classified, dt, dc, s0);
+        let d = recovery::lee_fenves_damage(classified, dt, dc, s0);
         let sig = match self.constants.recovery {
-            Recovery::LeeFenves => scale(eff, 1.0 - d),
+            Recovery::LeeFenves => scale(classified.stress(), 1.0 - d),
             Recovery::Consistent => {
-                recovery::consistent_stress_of(&mut classified, dt, dc, s0, self.elastic.poisson)
+                recovery::consistent_stress_of(classified, dt, dc, s0, self.elastic.poisson)
             }
         };
         (sig, d, dt)

@@ -67,6 +67,22 @@ impl<'a> Classified<'a> {
         }
     }
 
+    /// `self` with the principal values of σ̄ given ([`principal_values`] of σ̄, computed
+    /// by the caller: the values [`Self::values`] would form, bit for bit).
+    #[inline]
+    pub fn with_values(self, values: [f64; 3]) -> Self {
+        Self {
+            values: Some(values),
+            ..self
+        }
+    }
+
+    /// The effective stress σ̄.
+    #[inline]
+    pub fn stress(&self) -> &'a Voigt {
+        self.eff
+    }
+
     /// Every principal value ≤ 0 by the bound Ī₁/3 + (2/3)√(3J̄₂) ≤ 0.
     #[inline]
     fn surely_compressed(&self) -> bool {

@@ -972,12 +972,14 @@ fn virgin_elastic_shortcut_is_the_general_update_bit_for_bit() {
 /// The shortcut of a yielded point that stays elastic ([`PlasticDamage::yielded_elastic`])
 /// gives what the general update gives, bit for bit, on and off place, under both
 /// regularisations, both recovery rules and with viscosity; draws from yielded states
-/// (tension, compression or both) by small strain steps that load and unload.
+/// (tension, compression or both) by small strain steps that unload or load further.
+/// Both of the shortcut's tests (the invariant bound, and eq. (25) at the exact principal
+/// values when the bound is loose) and the general path are each taken often.
 #[test]
 fn yielded_elastic_shortcut_is_the_general_update_bit_for_bit() {
     let mut uniform = xorshift(0x2545_f491_4f6c_dd1d);
     for (reg, rec, m) in shortcut_rules() {
-        let (mut shortcut, mut general, mut yielded) = (0, 0, [false; 2]);
+        let (mut bound, mut exact, mut general, mut yielded) = (0, 0, 0, [false; 2]);
         for _ in 0..6000 {
             let ctx = PointContext {
                 char_length: 0.05 + 2.0 * uniform().abs(),
@@ -995,8 +997,14 @@ fn yielded_elastic_shortcut_is_the_general_update_bit_for_bit() {
             }
             yielded[0] |= old[slot::Y_T] > 0.0;
             yielded[1] |= old[slot::Y_C] > 0.0;
-            // The elastic strain scaled by 1 − 0.6|u| (unloading) and a random step.
-            let back = 1.0 - 0.6 * uniform().abs();
+            // The elastic strain scaled by 1 − 0.6|u| (unloading) or, one draw in four,
+            // by up to 1.05 (loading on), and a random step.
+            let u = uniform();
+            let back = if u > 0.5 {
+                1.0 + 0.1 * (u - 0.5)
+            } else {
+                1.0 - 0.6 * u.abs()
+            };
             let strain: Voigt = std::array::from_fn(|i| {
                 let p = old[slot::PLASTIC + i];
                 p + back * (first[i] - p) + 1e-6 * uniform()
@@ -1006,16 +1014,29 @@ fn yielded_elastic_shortcut_is_the_general_update_bit_for_bit() {
             if m.yielded_elastic(&strain, &old, &mut c, ctx.char_length)
                 .is_some()
             {
-                shortcut += 1;
                 assert!(!m.hardening_moved(&old, &b));
+                // Which of the two tests took it: the invariant bound alone?
+                let start = Internal::of(&old);
+                let eff = m.elastic.stress(&sub(&strain, &start.plastic));
+                let (t, cl) = m.element_laws(ctx.char_length);
+                let (beta, limit) = virgin_bound(
+                    &m.surface,
+                    t.law.effective(start.y_t),
+                    cl.law.effective(start.y_c),
+                );
+                if virgin_bracket(&m.surface, beta, &eff) <= limit {
+                    bound += 1;
+                } else {
+                    exact += 1;
+                }
             } else {
                 general += 1;
             }
         }
         assert_eq!(yielded, [true, true], "{reg:?} {rec:?}");
         assert!(
-            shortcut > 200 && general > 200,
-            "{reg:?} {rec:?}: {shortcut} / {general}"
+            bound + exact > 200 && exact > 50 && general > 200,
+            "{reg:?} {rec:?}: {bound} / {exact} / {general}"
         );
     }
 }

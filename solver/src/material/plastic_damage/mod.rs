@@ -115,7 +115,7 @@ fn virgin_bracket<T: Lane>(surface: &YieldSurface, beta: T, eff: &[T; 6]) -> T {
 /// path evaluates the bracket at the principal values of its own trial stress, which
 /// may differ from these by the closed form's rounding (up to ~1e-11 of the largest
 /// |σ̂ᵢ| near a double root, [`principal_values`]) and by the rounding of its trial
-/// strain; the bracket moves by at most (1 + |β| + γ) times that. 1e-9 of the
+/// strain; the bracket moves by at most (1 + α + |β| + γ) times that. 1e-9 of the
 /// largest |σ̂ᵢ| per unit of that slope: a hundred times the rounding, far below any
 /// physical distance to the surface.
 #[inline(always)]

@@ -427,11 +427,8 @@ impl PlasticDamage {
         let start = Internal::of(old);
         let eff = self.elastic.stress(&sub(strain, &start.plastic));
         let (t, c) = self.element_laws(l);
-        let (beta, limit) = virgin_bound(
-            &self.surface,
-            t.law.effective(start.y_t),
-            c.law.effective(start.y_c),
-        );
+        let (ct, cc) = (t.law.effective(start.y_t), c.law.effective(start.y_c));
+        let (beta, limit) = virgin_bound(&self.surface, ct, cc);
         // The bound needs F non-decreasing in σ̂_max (β ≥ 0): any other point (β < 0 or
         // NaN) takes the general path, as it always has.
         let monotone = beta >= 0.0;
@@ -442,11 +439,11 @@ impl PlasticDamage {
         if virgin_bracket(&self.surface, beta, &eff) <= limit {
             return Some(self.commit(strain, old, new, &start, &start, eff, laws, None));
         }
+        // F of eq. (25) at the exact values, inside by the bound's margin plus the allowance.
         let values = principal_values(&eff);
-        let (i1, q) = invariants(&eff);
-        let bracket = self.surface.alpha * i1 + q + beta * values[0].max(0.0)
-            - self.surface.gamma * (-values[0]).max(0.0);
-        let inside = bracket + exact_bracket_margin(&self.surface, beta, &values) <= limit;
+        let allowance = VIRGIN_MARGIN * cc
+            + exact_bracket_margin(&self.surface, beta, &values) / (1.0 - self.surface.alpha);
+        let inside = self.surface.value(&values, ct, cc) + allowance <= 0.0;
         if !inside {
             return None;
         }

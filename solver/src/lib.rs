@@ -27,6 +27,7 @@ pub mod model;
 pub mod motion;
 pub mod readable;
 pub mod stage;
+pub mod step_limits;
 #[cfg(test)]
 mod test_random;
 

@@ -168,6 +168,44 @@ fn main() -> ExitCode {
                     m.stable.speed,
                     m.critical_step_with_damping()
                 );
+                let limits =
+                    dcfm::step_limits::step_limits(m, &[1.1, 1.25, 1.5], &[10, 100, 1000, 10000]);
+                for band in &limits.bands {
+                    let regions: Vec<String> = band
+                        .by_region
+                        .iter()
+                        .map(|(r, n)| format!("{r} {n}"))
+                        .collect();
+                    let (lo, hi) = band.bounds;
+                    say!(
+                        "          below {:.2}× that step: {} elements ({}), centroids in x {:.2}–{:.2}, y {:.2}–{:.2}, z {:.2}–{:.2} m",
+                        band.factor,
+                        band.count,
+                        regions.join(", "),
+                        lo[0],
+                        hi[0],
+                        lo[1],
+                        hi[1],
+                        lo[2],
+                        hi[2]
+                    );
+                }
+                say!(
+                    "          critical Δt without the worst {} of the {} moving elements: {} s",
+                    limits
+                        .without_worst
+                        .iter()
+                        .map(|(n, _)| n.to_string())
+                        .collect::<Vec<_>>()
+                        .join(" / "),
+                    limits.moving,
+                    limits
+                        .without_worst
+                        .iter()
+                        .map(|(_, dt)| format!("{dt:.4e}"))
+                        .collect::<Vec<_>>()
+                        .join(" / ")
+                );
                 let prescribed = (0..m.n_elements())
                     .filter(|&e| m.element_fully_prescribed(e))
                     .count();

@@ -129,13 +129,21 @@ impl CavernGeometry {
         zc + (r * r - x * x).max(0.0).sqrt()
     }
 
-    /// The lining's inner surface of the crown at |x| ≤ half width − lining: a circular
-    /// arch springing from the top of the sidewall lining's face and `lining` below the
-    /// crown.
+    /// The lining's inner surface of the crown at |x| ≤ half width − lining: the circle
+    /// concentric with the excavated arch, `lining` inside it, so that the arch lining is
+    /// `lining` thick normal to its surfaces everywhere (at the crown as at the haunches).
+    /// It meets the sidewall lining's face at [`CavernGeometry::inner_springing`], below
+    /// the springline.
     pub fn inner_arch(&self, x: f64) -> f64 {
-        let c = self.half_width() - self.lining;
-        let (r, zc) = self.circle(c, self.arch_rise - self.lining);
-        zc + (r * r - x * x).max(0.0).sqrt()
+        let (r, zc) = self.circle(self.half_width(), self.arch_rise);
+        let ri = r - self.lining;
+        zc + (ri * ri - x * x).max(0.0).sqrt()
+    }
+
+    /// Height at which the lining's inner arch meets the face of the sidewall lining
+    /// (|x| = half width − lining): the top of that face.
+    pub fn inner_springing(&self) -> f64 {
+        self.inner_arch(self.half_width() - self.lining)
     }
 
     /// Centre (y) of unit `u`.

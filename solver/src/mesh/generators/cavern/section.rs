@@ -190,10 +190,11 @@ impl SectionLines {
         let z_inner = if x.abs() <= inner_face + 1e-9 {
             geo.inner_arch(x)
         } else {
-            // Across the sidewall lining: from the springline at its face down to the flat
-            // inner line at the rock.
+            // Across the sidewall lining: from the top of its face down to the flat inner
+            // line at the rock.
             let s = (x.abs() - inner_face) / geo.lining;
-            geo.springline() + s * (zi_flat - geo.springline())
+            let top = geo.inner_springing();
+            top + s * (zi_flat - top)
         };
         let z_outer = geo.outer_arch(x);
         let z_low = self.z[self.k_low];

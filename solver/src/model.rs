@@ -261,44 +261,64 @@ impl Model {
     /// The stable step of [`Model::refresh_stable_step`] for the current constraints and
     /// groups, without storing it (a stage with its own supports, the static relaxation).
     pub fn stable_step_now(&self) -> StableStep {
-        let pick = |skip_prescribed: bool| -> StableStep {
-            let mut stable = StableStep {
-                critical: f64::INFINITY,
-                element: 0,
-                length: 0.0,
-                speed: 0.0,
-            };
-            for g in &self.groups {
-                let c = g.material.elastic().p_wave_speed();
-                for &e in &g.elements {
-                    let e = e as usize;
-                    let dt = self.element_steps[e];
-                    if dt < stable.critical
-                        && !(skip_prescribed && self.element_fully_prescribed(e))
-                    {
-                        // The length that gives this step at the P-wave speed.
-                        stable = StableStep {
-                            critical: dt,
-                            element: e,
-                            length: dt * c,
-                            speed: c,
-                        };
-                    }
-                }
-            }
-            stable
+        let mut stable = StableStep {
+            critical: f64::INFINITY,
+            element: 0,
+            length: 0.0,
+            speed: 0.0,
         };
-        let mut stable = pick(true);
-        if !stable.critical.is_finite() {
-            stable = pick(false);
+        for (g, e) in self.moving_elements() {
+            let dt = self.element_steps[e];
+            if dt < stable.critical {
+                // The length that gives this step at the P-wave speed.
+                let c = self.groups[g].material.elastic().p_wave_speed();
+                stable = StableStep {
+                    critical: dt,
+                    element: e,
+                    length: dt * c,
+                    speed: c,
+                };
+            }
         }
-        let extra = self.extra_omega_squared;
-        if extra > 0.0 {
-            let w = 2.0 / stable.critical;
-            stable.critical = 2.0 / (w * w + extra).sqrt();
-            stable.length = stable.critical * stable.speed;
+        let folded = self.fold_extra_stiffness(stable.critical);
+        if folded != stable.critical {
+            stable.critical = folded;
+            stable.length = folded * stable.speed;
         }
         stable
+    }
+
+    /// The elements the critical step is taken over, as (group, element) in the groups'
+    /// order: those with at least one free DOF ([`Model::element_fully_prescribed`]
+    /// leaves the others out), or every element when none has one.
+    pub fn moving_elements(&self) -> Vec<(usize, usize)> {
+        let all = || {
+            self.groups
+                .iter()
+                .enumerate()
+                .flat_map(|(g, group)| group.elements.iter().map(move |&e| (g, e as usize)))
+        };
+        let moving: Vec<(usize, usize)> = all()
+            .filter(|&(_, e)| !self.element_fully_prescribed(e))
+            .collect();
+        if moving.is_empty() {
+            all().collect()
+        } else {
+            moving
+        }
+    }
+
+    /// An element step `dt` with the anchors' stiffness folded in (Weyl's bound on the
+    /// largest eigenvalue of a sum: ω²_max ≤ (2/Δt)² + ω²_extra, so the step becomes
+    /// 2/√((2/Δt)² + ω²_extra)); `dt` itself when there are no anchors or it is infinite.
+    pub fn fold_extra_stiffness(&self, dt: f64) -> f64 {
+        let extra = self.extra_omega_squared;
+        if extra > 0.0 && dt.is_finite() {
+            let w = 2.0 / dt;
+            2.0 / (w * w + extra).sqrt()
+        } else {
+            dt
+        }
     }
 
     /// Recompute `inv_mass` after constraints change: 0 where all DOFs are constrained.

@@ -7,8 +7,8 @@
 //! counts them), how many lie within a few factors of the smallest step, in which regions
 //! and where, and the step the model would have if its worst elements were as good as the
 //! next ones — the figures a user needs to decide whether remeshing a corner pays.
-//! Anchor bars' stiffness (`Model::extra_omega_squared`) is folded in as for the critical
-//! step itself (Weyl: 2/√((2/Δt)² + ω²_extra)).
+//! Anchor bars' stiffness is folded in as for the critical step itself
+//! ([`Model::fold_extra_stiffness`]).
 
 use crate::model::Model;
 
@@ -42,35 +42,13 @@ pub struct StepLimits {
 /// elements left out (`counts`; none left at or beyond the number of moving elements:
 /// an infinite step).
 pub fn step_limits(model: &Model, factors: &[f64], counts: &[usize]) -> StepLimits {
-    let mut moving: Vec<(f64, usize, usize)> = Vec::new();
-    for (gi, g) in model.groups.iter().enumerate() {
-        for &e in &g.elements {
-            let e = e as usize;
-            if !model.element_fully_prescribed(e) {
-                moving.push((model.element_steps[e], e, gi));
-            }
-        }
-    }
-    if moving.is_empty() {
-        // Every element prescribed: the critical step is taken over all of them.
-        for (gi, g) in model.groups.iter().enumerate() {
-            moving.extend(
-                g.elements
-                    .iter()
-                    .map(|&e| (model.element_steps[e as usize], e as usize, gi)),
-            );
-        }
-    }
+    let mut moving: Vec<(f64, usize, usize)> = model
+        .moving_elements()
+        .into_iter()
+        .map(|(gi, e)| (model.element_steps[e], e, gi))
+        .collect();
     moving.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-    let with_extra = |dt: f64| {
-        let extra = model.extra_omega_squared;
-        if extra > 0.0 && dt.is_finite() {
-            let w = 2.0 / dt;
-            2.0 / (w * w + extra).sqrt()
-        } else {
-            dt
-        }
-    };
+    let with_extra = |dt: f64| model.fold_extra_stiffness(dt);
     let smallest = moving.first().map_or(f64::INFINITY, |m| m.0);
     let bands = factors
         .iter()

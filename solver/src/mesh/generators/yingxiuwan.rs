@@ -705,6 +705,40 @@ mod tests {
     use crate::mesh::generators::cavern::generate;
     use crate::mesh::hex8_shape::check_jacobian;
 
+    /// The arch lining is one lining thick normal to its surfaces everywhere: the inner
+    /// arch is the circle concentric with the excavated one, `lining` inside it, and it
+    /// meets the sidewall lining's face 0.3697 m below the springline (the closed form for
+    /// a 17.0 m span rising 4.0 m: R = (8.5² + 4²)/8 = 11.03125 m, the inner circle of
+    /// radius R − 1 at |x| = 7.5 m, √(10.03125² − 7.5²) − (R − 4) = −0.36972 m).
+    #[test]
+    fn arch_lining_inner_face_is_concentric_one_lining_inside() {
+        let geo = geometry();
+        let c = geo.half_width();
+        let f = geo.arch_rise;
+        let radius = (c * c + f * f) / (2.0 * f);
+        let centre = geo.springline() + f - radius;
+        for i in 0..=30 {
+            let x = (c - geo.lining) * i as f64 / 30.0;
+            let outer = ((geo.outer_arch(x) - centre).powi(2) + x * x).sqrt();
+            let inner = ((geo.inner_arch(x) - centre).powi(2) + x * x).sqrt();
+            assert!(
+                (outer - radius).abs() < 1e-9,
+                "outer arch off its circle at x = {x}"
+            );
+            assert!(
+                (outer - inner - geo.lining).abs() < 1e-9,
+                "arch lining {} m thick at x = {x}, expected {}",
+                outer - inner,
+                geo.lining
+            );
+        }
+        let drop = geo.springline() - geo.inner_springing();
+        assert!(
+            (drop - 0.3697).abs() < 1e-4,
+            "inner springing {drop} m below the springline"
+        );
+    }
+
     /// The CI variant: every element valid, all sets present, sizes within the variant's
     /// cap, the paper's outer dimensions, the three interfaces, the survey sets where they
     /// belong, the excavated volume meshed and overlapped by the concrete.

@@ -1,8 +1,9 @@
 //! A block reinforced with thousands of anchor segments (two-way mats under its top and one side, rock
 //! bolts with pretension from the top, one bond–slip bar), loaded on the top and stepped:
 //! displacements, internal forces and bar forces are the same bit for bit on 1 and 2
-//! threads — the perfect-bond pass runs in parallel (segments, then host nodes) with every
-//! node's sum taken in segment order (anchor_bar.rs, `AnchorBars::add_internal_forces`).
+//! threads — the perfect-bond pass runs in parallel (segments, hosts, then host nodes) with
+//! every host's sum taken in segment order and every node's in host order (anchor_bar.rs,
+//! `AnchorBars::add_internal_forces`).
 
 use std::path::Path;
 

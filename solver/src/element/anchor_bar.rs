@@ -19,12 +19,14 @@
 //! the host ([`AnchorBars::commit`]). Pull-out of such a bar from a fixed host follows
 //! N(x) = P sinh(λ(L − x))/sinh(λL), λ = √(k_s/EA) (VERIFICATION.md W11).
 //!
-//! Determinism: the perfect-bond pass runs in two parallel phases whose results do not
-//! depend on how rayon splits them ([`AnchorBars::add_internal_forces`]): every segment's
-//! axial force from its own host nodes, then every host node's sum over its segments in
-//! segment order — the same additions in the same order as a serial loop over the
-//! segments in input order. The bond–slip bars follow serially in input order. So results
-//! do not depend on the number of threads.
+//! Determinism: the perfect-bond pass works on the segments grouped by host element (a
+//! reinforcement mat puts about ten segments in every concrete element) in three parallel
+//! phases whose results do not depend on how rayon splits them
+//! ([`AnchorBars::add_internal_forces`]): every segment's axial force from its host's
+//! nodes, every host's eight nodal forces summed over its segments in segment order, then
+//! every host node's sum over its hosts in ascending order — the additions, in their
+//! order, of a serial loop over the hosts. The bond–slip bars follow serially in input
+//! order. So results do not depend on the number of threads.
 
 use rayon::prelude::*;
 use serde::Deserialize;
@@ -132,70 +134,114 @@ pub struct Segment {
 }
 
 /// What the force pass reads of a perfect-bond segment, packed (built by
-/// [`AnchorBars::finish`]).
+/// [`AnchorBars::finish`], in host order: see [`HostBlocks`]).
 #[derive(Clone, Debug)]
 struct SegmentKernel {
-    nodes: [u32; 8],
+    /// Host block (index into [`HostBlocks::nodes`]).
+    host: u32,
+    /// Segment index in [`AnchorBars::segments`].
+    segment: u32,
     g: [f64; 8],
     t: [f64; 3],
     length: f64,
     ea: f64,
     yield_force: f64,
     pretension: f64,
+    /// Elongation t·(u(q) − u(p)) at installation ([`AnchorBars::install_at`]; 0 until
+    /// then).
+    reference: f64,
 }
 
-/// The host nodes of the perfect-bond segments with, for every node, the segments that
-/// push on it in segment order (CSR), and a sum buffer per node: the scatter of
-/// [`AnchorBars::add_internal_forces`], built by [`AnchorBars::finish`].
+/// The perfect-bond segments grouped by host element, and the buffers of the force pass
+/// ([`AnchorBars::add_internal_forces`]), sized by [`AnchorBars::finish`] so that the step
+/// loop allocates nothing. Kernels are the segments sorted by (host element, segment).
 #[derive(Clone, Debug, Default)]
-struct NodeScatter {
-    /// Distinct host nodes, ascending.
-    nodes: Vec<u32>,
-    /// Entries of node i: `start[i]..start[i + 1]`.
+struct HostBlocks {
+    /// Nodes of every host element, hosts in ascending element order.
+    nodes: Vec<[u32; 8]>,
+    /// Kernels of host h: `start[h]..start[h + 1]`.
     start: Vec<u32>,
-    /// Segment of every entry, ascending within a node.
-    segment: Vec<u32>,
-    /// N_a(q) − N_a(p) of the entry's node in its segment.
-    g: Vec<f64>,
-    /// f_int of every node with its segments' forces added.
+    /// Kernel of every segment (the inverse of [`SegmentKernel::segment`]).
+    kernel_of: Vec<u32>,
+    /// Axial force, trial plastic strain and N t of every kernel at the last pass.
+    axial: Vec<(f64, f64)>,
+    nt: Vec<[f64; 3]>,
+    /// Forces on the eight nodes of every host at the last pass.
+    host_force: Vec<[[f64; 3]; 8]>,
+    /// Distinct host nodes, ascending, with their entries (host, local node) in ascending
+    /// host order: `entry_start[i]..entry_start[i + 1]` (CSR).
+    node: Vec<u32>,
+    entry_start: Vec<u32>,
+    entry: Vec<(u32, u8)>,
+    /// f_int of every host node with its hosts' forces added.
     sum: Vec<[f64; 3]>,
 }
 
-impl NodeScatter {
-    fn new(kernels: &[SegmentKernel]) -> Self {
-        let mut pairs: Vec<(u32, u32, u8)> = Vec::with_capacity(8 * kernels.len());
-        for (k, s) in kernels.iter().enumerate() {
-            for (a, &n) in s.nodes.iter().enumerate() {
-                pairs.push((n, k as u32, a as u8));
+impl HostBlocks {
+    /// Group `segments` by host (stably: segment order within a host) and build the
+    /// node scatter.
+    fn new(segments: &[Segment], bars: &[BarInfo]) -> (Self, Vec<SegmentKernel>) {
+        let mut order: Vec<u32> = (0..segments.len() as u32).collect();
+        order.sort_by_key(|&k| (segments[k as usize].host, k));
+        let mut blocks = HostBlocks::default();
+        let mut kernels = Vec::with_capacity(segments.len());
+        let mut last_host = None;
+        for &k in &order {
+            let sg = &segments[k as usize];
+            if last_host != Some(sg.host) {
+                last_host = Some(sg.host);
+                blocks.start.push(kernels.len() as u32);
+                blocks.nodes.push(sg.nodes);
+            }
+            let info = &bars[sg.bar as usize];
+            kernels.push(SegmentKernel {
+                host: (blocks.nodes.len() - 1) as u32,
+                segment: k,
+                g: sg.g,
+                t: sg.t,
+                length: sg.length,
+                ea: info.ea,
+                yield_force: info.yield_force,
+                pretension: info.pretension,
+                reference: 0.0,
+            });
+        }
+        blocks.start.push(kernels.len() as u32);
+        blocks.kernel_of = vec![0; segments.len()];
+        for (kernel, s) in kernels.iter().enumerate() {
+            blocks.kernel_of[s.segment as usize] = kernel as u32;
+        }
+        let mut pairs: Vec<(u32, u32, u8)> = Vec::with_capacity(8 * blocks.nodes.len());
+        for (h, nodes) in blocks.nodes.iter().enumerate() {
+            for (a, &n) in nodes.iter().enumerate() {
+                pairs.push((n, h as u32, a as u8));
             }
         }
         pairs.sort_unstable();
-        let mut out = NodeScatter {
-            segment: pairs.iter().map(|p| p.1).collect(),
-            g: pairs
-                .iter()
-                .map(|&(_, k, a)| kernels[k as usize].g[a as usize])
-                .collect(),
-            ..Default::default()
-        };
         for (i, p) in pairs.iter().enumerate() {
-            if out.nodes.last() != Some(&p.0) {
-                out.nodes.push(p.0);
-                out.start.push(i as u32);
+            if blocks.node.last() != Some(&p.0) {
+                blocks.node.push(p.0);
+                blocks.entry_start.push(i as u32);
             }
         }
-        out.start.push(pairs.len() as u32);
-        out.sum = vec![[0.0; 3]; out.nodes.len()];
-        out
+        blocks.entry_start.push(pairs.len() as u32);
+        blocks.entry = pairs.iter().map(|&(_, h, a)| (h, a)).collect();
+        blocks.sum = vec![[0.0; 3]; blocks.node.len()];
+        blocks.axial = vec![(0.0, 0.0); kernels.len()];
+        blocks.nt = vec![[0.0; 3]; kernels.len()];
+        blocks.host_force = vec![[[0.0; 3]; 8]; blocks.nodes.len()];
+        (blocks, kernels)
     }
 }
 
 /// Segments per parallel task of [`AnchorBars::history_values`].
 const HISTORY_SEGMENTS_PER_TASK: usize = 8192;
 
-/// Segments per rayon task of the segment phase, host nodes per task of the node phase:
-/// large enough to amortise the task, small enough to balance two to a few threads.
+/// Segments per rayon task of the segment phase, hosts per task of the host phase, host
+/// nodes per task of the node phase: large enough to amortise the task, small enough to
+/// balance two to a few threads.
 const SEGMENTS_PER_TASK: usize = 1024;
+const HOSTS_PER_TASK: usize = 128;
 const NODES_PER_TASK: usize = 512;
 
 /// A bond–slip bar: its own nodes.
@@ -264,12 +310,9 @@ pub struct AnchorBars {
     /// Elongation t·(u(q) − u(p)) of every perfect-bond segment at installation
     /// ([`AnchorBars::install_at`]; empty: installed in the reference configuration).
     elongation_reference: Vec<f64>,
-    /// Packed segment data, the per-node scatter and N t of every perfect-bond segment at
-    /// the last pass, sized by [`AnchorBars::finish`] so that the step loop allocates
-    /// nothing.
+    /// Packed segment data in host order and the host blocks of the force pass.
     kernels: Vec<SegmentKernel>,
-    scatter: NodeScatter,
-    force_vector: Vec<[f64; 3]>,
+    blocks: HostBlocks,
 }
 
 /// A bar's name and its history group.
@@ -434,24 +477,16 @@ impl AnchorBars {
         self.plastic = vec![0.0; n];
         self.plastic_trial = vec![0.0; n];
         self.force = vec![0.0; n];
-        self.kernels = self
-            .segments
-            .iter()
-            .map(|s| {
-                let info = &self.bars[s.bar as usize];
-                SegmentKernel {
-                    nodes: s.nodes,
-                    g: s.g,
-                    t: s.t,
-                    length: s.length,
-                    ea: info.ea,
-                    yield_force: info.yield_force,
-                    pretension: info.pretension,
-                }
-            })
-            .collect();
-        self.scatter = NodeScatter::new(&self.kernels);
-        self.force_vector = vec![[0.0; 3]; self.segments.len()];
+        let (blocks, kernels) = HostBlocks::new(&self.segments, &self.bars);
+        self.blocks = blocks;
+        self.kernels = kernels;
+        for k in self.kernels.iter_mut() {
+            k.reference = self
+                .elongation_reference
+                .get(k.segment as usize)
+                .copied()
+                .unwrap_or(0.0);
+        }
     }
 
     /// Install the bars in the deformed configuration `u` (host displacements): from now
@@ -474,6 +509,9 @@ impl AnchorBars {
             .iter()
             .map(|s| axial(s.host, &s.g, &s.t))
             .collect();
+        for k in self.kernels.iter_mut() {
+            k.reference = self.elongation_reference[k.segment as usize];
+        }
         for b in self.bond_slip.iter_mut() {
             b.host_reference = b
                 .hosts
@@ -542,61 +580,94 @@ impl AnchorBars {
     /// the same bit for bit on any number of threads.
     pub fn add_internal_forces(&mut self, mesh: &Mesh, u: &[[f64; 3]], f_int: &mut [[f64; 3]]) {
         let nseg = self.segments.len();
+        let blocks = &mut self.blocks;
+        // 1. Every segment's axial force from its host's nodes (kernels in host order: the
+        // host's nodes are read once from memory, then from the cache).
         {
             let kernels = &self.kernels;
-            let plastic = &self.plastic[..nseg];
-            let reference = &self.elongation_reference;
-            self.force[..nseg]
+            let (plastic, host_nodes) = (&self.plastic[..nseg], &blocks.nodes);
+            blocks
+                .axial
                 .par_iter_mut()
-                .zip(self.plastic_trial[..nseg].par_iter_mut())
-                .zip(self.force_vector.par_iter_mut())
-                .enumerate()
+                .zip(blocks.nt.par_iter_mut())
+                .zip(kernels.par_iter())
                 .with_min_len(SEGMENTS_PER_TASK)
-                .for_each(|(k, ((force, trial), nt))| {
-                    let s = &kernels[k];
+                .for_each(|((axial, nt), s)| {
+                    let nodes = &host_nodes[s.host as usize];
                     let t = s.t;
                     let mut du = 0.0;
                     for a in 0..8 {
-                        let ua = u[s.nodes[a] as usize];
+                        let ua = u[nodes[a] as usize];
                         du += s.g[a] * (t[0] * ua[0] + t[1] * ua[1] + t[2] * ua[2]);
                     }
-                    if let Some(r) = reference.get(k) {
-                        du -= r;
-                    }
+                    du -= s.reference;
                     let (n, ep) = elastic_plastic(
-                        plastic[k],
+                        plastic[s.segment as usize],
                         s.ea,
                         s.yield_force,
                         s.pretension,
                         du / s.length,
                     );
-                    *force = n;
-                    *trial = ep;
+                    *axial = (n, ep);
                     *nt = [n * t[0], n * t[1], n * t[2]];
                 });
         }
+        // 2. Every host's nodal forces, its segments in segment order.
         {
-            let sc = &mut self.scatter;
-            let (nodes, start, segment, g) = (&sc.nodes, &sc.start, &sc.segment, &sc.g);
-            let nt = &self.force_vector;
+            let (kernels, start, nt) = (&self.kernels, &blocks.start, &blocks.nt);
+            blocks
+                .host_force
+                .par_iter_mut()
+                .enumerate()
+                .with_min_len(HOSTS_PER_TASK)
+                .for_each(|(h, force)| {
+                    let mut f = [[0.0; 3]; 8];
+                    for k in start[h] as usize..start[h + 1] as usize {
+                        let (v, g) = (nt[k], &kernels[k].g);
+                        for a in 0..8 {
+                            for d in 0..3 {
+                                f[a][d] += v[d] * g[a];
+                            }
+                        }
+                    }
+                    *force = f;
+                });
+        }
+        // 3. Every host node's sum over its hosts in ascending order.
+        {
+            let (node, entry_start, entry) = (&blocks.node, &blocks.entry_start, &blocks.entry);
+            let host_force = &blocks.host_force;
             let f_in: &[[f64; 3]] = f_int;
-            sc.sum
+            blocks
+                .sum
                 .par_iter_mut()
                 .enumerate()
                 .with_min_len(NODES_PER_TASK)
                 .for_each(|(i, sum)| {
-                    let mut f = f_in[nodes[i] as usize];
-                    for e in start[i] as usize..start[i + 1] as usize {
-                        let (v, ga) = (nt[segment[e] as usize], g[e]);
+                    let mut f = f_in[node[i] as usize];
+                    for &(h, a) in &entry[entry_start[i] as usize..entry_start[i + 1] as usize] {
+                        let v = host_force[h as usize][a as usize];
                         for d in 0..3 {
-                            f[d] += v[d] * ga;
+                            f[d] += v[d];
                         }
                     }
                     *sum = f;
                 });
-            for (&n, f) in sc.nodes.iter().zip(&sc.sum) {
+            for (&n, f) in blocks.node.iter().zip(&blocks.sum) {
                 f_int[n as usize] = *f;
             }
+        }
+        // 4. The axial forces and trial plastic strains in segment order.
+        {
+            let (kernel_of, axial) = (&blocks.kernel_of, &blocks.axial);
+            self.force[..nseg]
+                .par_iter_mut()
+                .zip(self.plastic_trial[..nseg].par_iter_mut())
+                .zip(kernel_of.par_iter())
+                .with_min_len(SEGMENTS_PER_TASK)
+                .for_each(|((force, trial), &k)| {
+                    (*force, *trial) = axial[k as usize];
+                });
         }
         for bi in 0..self.bond_slip.len() {
             let info = &self.bars[self.bond_slip[bi].bar as usize];
@@ -964,13 +1035,15 @@ mod tests {
     }
 
     /// The parallel pass (on a two-thread pool, several tasks per phase) gives, bit for
-    /// bit, the forces and trial plastic strains of the serial loop over the segments in
-    /// input order written out from the module docs: ε = t·(u(q) − u(p))/l less the
-    /// installation elongation, N = N₀ + EA (ε − εᵖ) clipped at ±f_y A, f_a += N t g_a —
-    /// added to host forces already non-zero (the element pass), with some segments
-    /// yielding.
+    /// bit, the axial forces and trial plastic strains of the serial loop over the
+    /// segments in input order written out from the module docs (ε = t·(u(q) − u(p))/l
+    /// less the installation elongation, N = N₀ + EA (ε − εᵖ) clipped at ±f_y A) and the
+    /// host forces of the serial loop over the hosts in ascending order (each host's
+    /// f_a = Σ N t g_a over its segments in input order, added to its nodes) — added to
+    /// host forces already non-zero (the element pass), with some segments yielding; and
+    /// the host forces of the plain loop over the segments within rounding.
     #[test]
-    fn parallel_pass_matches_the_serial_loop_in_segment_order() {
+    fn parallel_pass_matches_the_serial_loops() {
         let mesh = BoxMeshSpec::single("b", [0.0; 3], [12.0, 12.0, 6.0], [12, 12, 6])
             .build("test")
             .unwrap();
@@ -997,8 +1070,13 @@ mod tests {
         }
         bars.finish();
         // Several tasks in each phase.
-        let (segments, nodes) = (bars.segments.len(), bars.scatter.nodes.len());
+        let (segments, hosts, nodes) = (
+            bars.segments.len(),
+            bars.blocks.nodes.len(),
+            bars.blocks.node.len(),
+        );
         assert!(segments > 3 * SEGMENTS_PER_TASK, "{segments} segments");
+        assert!(hosts > 3 * HOSTS_PER_TASK, "{hosts} hosts");
         assert!(nodes > NODES_PER_TASK, "{nodes} host nodes");
         // Installed in a slightly deformed state, then strained up to 4e-3 > f_y/E.
         let field = |x: &[f64; 3], a: f64| -> [f64; 3] {
@@ -1017,8 +1095,8 @@ mod tests {
             .map(|x| [x[0] * 1e3 + 0.1, -x[1] * 7e2, x[2] * 3.3e2 + 1.0 / 3.0])
             .collect();
 
-        // The serial reference.
-        let mut f_ref = f0.clone();
+        // The serial references: segments in input order, then hosts in ascending order.
+        let mut f_seg = f0.clone();
         let mut force_ref = vec![0.0; bars.segments.len()];
         let mut trial_ref = vec![0.0; bars.segments.len()];
         for (k, s) in bars.segments.iter().enumerate() {
@@ -1042,7 +1120,30 @@ mod tests {
             trial_ref[k] = ep_new;
             for a in 0..8 {
                 for d in 0..3 {
-                    f_ref[conn[a] as usize][d] += n * s.t[d] * s.g[a];
+                    f_seg[conn[a] as usize][d] += n * s.t[d] * s.g[a];
+                }
+            }
+        }
+        let mut f_ref = f0.clone();
+        let mut hosts: Vec<u32> = bars.segments.iter().map(|s| s.host).collect();
+        hosts.sort_unstable();
+        hosts.dedup();
+        for &host in &hosts {
+            let mut fh = [[0.0; 3]; 8];
+            for (k, s) in bars.segments.iter().enumerate() {
+                if s.host == host {
+                    let nt = [0, 1, 2].map(|d| force_ref[k] * s.t[d]);
+                    for a in 0..8 {
+                        for d in 0..3 {
+                            fh[a][d] += nt[d] * s.g[a];
+                        }
+                    }
+                }
+            }
+            let conn = mesh.elements[host as usize];
+            for a in 0..8 {
+                for d in 0..3 {
+                    f_ref[conn[a] as usize][d] += fh[a][d];
                 }
             }
         }
@@ -1058,7 +1159,17 @@ mod tests {
             .unwrap();
         let mut f = f0.clone();
         pool.install(|| bars.add_internal_forces(&mesh, &u, &mut f));
-        assert!(f == f_ref, "host forces differ from the serial loop");
+        assert!(
+            f == f_ref,
+            "host forces differ from the serial loop over the hosts"
+        );
+        let scale = f_seg.iter().flatten().fold(0.0f64, |m, x| m.max(x.abs()));
+        for (a, b) in f.iter().flatten().zip(f_seg.iter().flatten()) {
+            assert!(
+                (a - b).abs() <= 1e-13 * scale,
+                "host force {a} against {b} from the loop over the segments"
+            );
+        }
         assert!(bars.force == force_ref, "axial forces differ");
         assert!(
             bars.plastic_trial == trial_ref,

@@ -19,8 +19,8 @@
 //! the host ([`AnchorBars::commit`]). Pull-out of such a bar from a fixed host follows
 //! N(x) = P sinh(λ(L − x))/sinh(λL), λ = √(k_s/EA) (VERIFICATION.md W11).
 //!
-//! Determinism: the perfect-bond pass works on the segments grouped by host element (a
-//! reinforcement mat puts about ten segments in every concrete element) in three parallel
+//! Determinism: the perfect-bond pass works on the segments grouped by host element (the
+//! reinforcement mats put many segments in every concrete element) in three parallel
 //! phases whose results do not depend on how rayon splits them
 //! ([`AnchorBars::add_internal_forces`]): every segment's axial force from its host's
 //! nodes, every host's eight nodal forces summed over its segments in segment order, then

@@ -137,7 +137,7 @@ pub struct Segment {
 /// [`AnchorBars::finish`], in host order: see [`HostBlocks`]).
 #[derive(Clone, Debug)]
 struct SegmentKernel {
-    /// Host block (index into [`HostBlocks::nodes`]).
+    /// Host block (index into [`HostBlocks::host_nodes`]).
     host: u32,
     /// Segment index in [`AnchorBars::segments`].
     segment: u32,
@@ -158,7 +158,7 @@ struct SegmentKernel {
 #[derive(Clone, Debug, Default)]
 struct HostBlocks {
     /// Nodes of every host element, hosts in ascending element order.
-    nodes: Vec<[u32; 8]>,
+    host_nodes: Vec<[u32; 8]>,
     /// Kernels of host h: `start[h]..start[h + 1]`.
     start: Vec<u32>,
     /// Kernel of every segment (the inverse of [`SegmentKernel::segment`]).
@@ -170,7 +170,7 @@ struct HostBlocks {
     host_force: Vec<[[f64; 3]; 8]>,
     /// Distinct host nodes, ascending, with their entries (host, local node) in ascending
     /// host order: `entry_start[i]..entry_start[i + 1]` (CSR).
-    node: Vec<u32>,
+    scatter_nodes: Vec<u32>,
     entry_start: Vec<u32>,
     entry: Vec<(u32, u8)>,
     /// f_int of every host node with its hosts' forces added.
@@ -191,11 +191,11 @@ impl HostBlocks {
             if last_host != Some(sg.host) {
                 last_host = Some(sg.host);
                 blocks.start.push(kernels.len() as u32);
-                blocks.nodes.push(sg.nodes);
+                blocks.host_nodes.push(sg.nodes);
             }
             let info = &bars[sg.bar as usize];
             kernels.push(SegmentKernel {
-                host: (blocks.nodes.len() - 1) as u32,
+                host: (blocks.host_nodes.len() - 1) as u32,
                 segment: k,
                 g: sg.g,
                 t: sg.t,
@@ -211,25 +211,25 @@ impl HostBlocks {
         for (kernel, s) in kernels.iter().enumerate() {
             blocks.kernel_of[s.segment as usize] = kernel as u32;
         }
-        let mut pairs: Vec<(u32, u32, u8)> = Vec::with_capacity(8 * blocks.nodes.len());
-        for (h, nodes) in blocks.nodes.iter().enumerate() {
+        let mut pairs: Vec<(u32, u32, u8)> = Vec::with_capacity(8 * blocks.host_nodes.len());
+        for (h, nodes) in blocks.host_nodes.iter().enumerate() {
             for (a, &n) in nodes.iter().enumerate() {
                 pairs.push((n, h as u32, a as u8));
             }
         }
         pairs.sort_unstable();
         for (i, p) in pairs.iter().enumerate() {
-            if blocks.node.last() != Some(&p.0) {
-                blocks.node.push(p.0);
+            if blocks.scatter_nodes.last() != Some(&p.0) {
+                blocks.scatter_nodes.push(p.0);
                 blocks.entry_start.push(i as u32);
             }
         }
         blocks.entry_start.push(pairs.len() as u32);
         blocks.entry = pairs.iter().map(|&(_, h, a)| (h, a)).collect();
-        blocks.sum = vec![[0.0; 3]; blocks.node.len()];
+        blocks.sum = vec![[0.0; 3]; blocks.scatter_nodes.len()];
         blocks.axial = vec![(0.0, 0.0); kernels.len()];
         blocks.nt = vec![[0.0; 3]; kernels.len()];
-        blocks.host_force = vec![[[0.0; 3]; 8]; blocks.nodes.len()];
+        blocks.host_force = vec![[[0.0; 3]; 8]; blocks.host_nodes.len()];
         (blocks, kernels)
     }
 }
@@ -307,9 +307,6 @@ pub struct AnchorBars {
     plastic_trial: Vec<f64>,
     /// Axial force of every segment at the last internal-force pass (N).
     pub force: Vec<f64>,
-    /// Elongation t·(u(q) − u(p)) of every perfect-bond segment at installation
-    /// ([`AnchorBars::install_at`]; empty: installed in the reference configuration).
-    elongation_reference: Vec<f64>,
     /// Packed segment data in host order and the host blocks of the force pass.
     kernels: Vec<SegmentKernel>,
     blocks: HostBlocks,
@@ -480,13 +477,6 @@ impl AnchorBars {
         let (blocks, kernels) = HostBlocks::new(&self.segments, &self.bars);
         self.blocks = blocks;
         self.kernels = kernels;
-        for k in self.kernels.iter_mut() {
-            k.reference = self
-                .elongation_reference
-                .get(k.segment as usize)
-                .copied()
-                .unwrap_or(0.0);
-        }
     }
 
     /// Install the bars in the deformed configuration `u` (host displacements): from now
@@ -504,13 +494,9 @@ impl AnchorBars {
                 })
                 .sum::<f64>()
         };
-        self.elongation_reference = self
-            .segments
-            .iter()
-            .map(|s| axial(s.host, &s.g, &s.t))
-            .collect();
         for k in self.kernels.iter_mut() {
-            k.reference = self.elongation_reference[k.segment as usize];
+            let s = &self.segments[k.segment as usize];
+            k.reference = axial(s.host, &s.g, &s.t);
         }
         for b in self.bond_slip.iter_mut() {
             b.host_reference = b
@@ -585,7 +571,7 @@ impl AnchorBars {
         // host's nodes are read once from memory, then from the cache).
         {
             let kernels = &self.kernels;
-            let (plastic, host_nodes) = (&self.plastic[..nseg], &blocks.nodes);
+            let (plastic, host_nodes) = (&self.plastic[..nseg], &blocks.host_nodes);
             blocks
                 .axial
                 .par_iter_mut()
@@ -635,7 +621,8 @@ impl AnchorBars {
         }
         // 3. Every host node's sum over its hosts in ascending order.
         {
-            let (node, entry_start, entry) = (&blocks.node, &blocks.entry_start, &blocks.entry);
+            let (scatter_nodes, entry_start, entry) =
+                (&blocks.scatter_nodes, &blocks.entry_start, &blocks.entry);
             let host_force = &blocks.host_force;
             let f_in: &[[f64; 3]] = f_int;
             blocks
@@ -644,7 +631,7 @@ impl AnchorBars {
                 .enumerate()
                 .with_min_len(NODES_PER_TASK)
                 .for_each(|(i, sum)| {
-                    let mut f = f_in[node[i] as usize];
+                    let mut f = f_in[scatter_nodes[i] as usize];
                     for &(h, a) in &entry[entry_start[i] as usize..entry_start[i + 1] as usize] {
                         let v = host_force[h as usize][a as usize];
                         for d in 0..3 {
@@ -653,7 +640,7 @@ impl AnchorBars {
                     }
                     *sum = f;
                 });
-            for (&n, f) in blocks.node.iter().zip(&blocks.sum) {
+            for (&n, f) in blocks.scatter_nodes.iter().zip(&blocks.sum) {
                 f_int[n as usize] = *f;
             }
         }
@@ -1072,8 +1059,8 @@ mod tests {
         // Several tasks in each phase.
         let (segments, hosts, nodes) = (
             bars.segments.len(),
-            bars.blocks.nodes.len(),
-            bars.blocks.node.len(),
+            bars.blocks.host_nodes.len(),
+            bars.blocks.scatter_nodes.len(),
         );
         assert!(segments > 3 * SEGMENTS_PER_TASK, "{segments} segments");
         assert!(hosts > 3 * HOSTS_PER_TASK, "{hosts} hosts");
@@ -1106,7 +1093,7 @@ mod tests {
                 let ua = u[conn[a] as usize];
                 du += s.g[a] * (s.t[0] * ua[0] + s.t[1] * ua[1] + s.t[2] * ua[2]);
             }
-            du -= bars.elongation_reference[k];
+            du -= bars.kernels[bars.blocks.kernel_of[k] as usize].reference;
             let info = &bars.bars[s.bar as usize];
             let ep = bars.plastic[k];
             let trial = info.pretension + info.ea * (du / s.length - ep);

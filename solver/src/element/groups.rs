@@ -7,6 +7,7 @@ use rayon::prelude::*;
 use crate::element::colouring::BLOCK;
 use crate::element::damage_marks::DamageMarks;
 use crate::element::damage_scan::{add_in_order, DamageScan, KNOWN_POINTS};
+use crate::element::elastic_matrices::ElasticMatrices;
 use crate::element::hex8_full::{self, FullGeometry};
 use crate::element::hex8_full_lanes;
 use crate::element::hex8_uniform::{self, UniformGeometry};
@@ -98,6 +99,11 @@ pub struct ElementGroup {
     /// each. `None`: each run computes and adds its elements on one thread. The sums are
     /// the same additions in the same order either way (bit-identical results).
     pub element_forces: Option<ElementForces>,
+    /// Stiffness matrices of linear elastic, fully integrated elements whose geometry
+    /// repeats ([`ElasticMatrices`]): with [`ElementGroup::lanes`] on and no initial
+    /// strain, those elements' internal and damping forces are K u and β K v. `None` for
+    /// other groups, and where no geometry repeats.
+    matrices: Option<ElasticMatrices>,
 }
 
 /// Per-element force buffers of the two-phase force pass (in the group's order).
@@ -250,6 +256,10 @@ macro_rules! kernel {
             changes: $g.damage_scan.changes(),
             beta: $beta,
             lanes: $g.lanes,
+            matrices: $g
+                .matrices
+                .as_ref()
+                .filter(|_| $g.lanes && $g.initial_strain.is_none()),
             u: $u,
             v: $v,
         }
@@ -321,6 +331,16 @@ impl ElementGroup {
                 GroupGeometry::Full(g)
             }
         };
+        let matrices = match (&material, integration) {
+            (Material::Elastic(el), Integration::Full) => {
+                let coords: Vec<[[f64; 3]; 8]> = elements
+                    .iter()
+                    .map(|&e| mesh.element_coords(e as usize))
+                    .collect();
+                ElasticMatrices::new(&coords, el)
+            }
+            _ => None,
+        };
         let stride = material.state_len();
         let n_points = elements.len() * integration.points();
         let states = PointStates::new(stride, n_points, |_, s| material.init_state(s));
@@ -347,6 +367,7 @@ impl ElementGroup {
             reference: None,
             lanes: true,
             element_forces,
+            matrices,
         })
     }
 
@@ -375,7 +396,8 @@ impl ElementGroup {
             + self.reference.as_ref().map_or(0, |v| v.len() * 192)
             + self.element_forces.as_ref().map_or(0, |b| {
                 (b.internal.len() + b.damping.len()) * std::mem::size_of::<[[f64; 3]; 8]>()
-            });
+            })
+            + self.matrices.as_ref().map_or(0, |m| m.bytes());
         fixed + (self.states.bytes() + extra) as f64 / self.len() as f64
     }
 
@@ -872,6 +894,7 @@ impl ElementGroup {
                 .element_forces
                 .as_ref()
                 .map(|_| ElementForces::new(kept.len())),
+            matrices: self.matrices.as_ref().map(|m| m.subset(&kept)),
             elements,
         }
     }
@@ -994,6 +1017,12 @@ impl ElementGroup {
         }
     }
 
+    /// The stiffness matrices of the group's elastic, fully integrated elements whose
+    /// geometry repeats ([`ElasticMatrices`]), if any.
+    pub fn elastic_matrices(&self) -> Option<&ElasticMatrices> {
+        self.matrices.as_ref()
+    }
+
     /// The integration-point states.
     pub fn states(&self) -> &PointStates {
         &self.states
@@ -1071,6 +1100,8 @@ struct Kernel<'k> {
     beta: f64,
     /// Kernels in lanes ([`ElementGroup::lanes`]).
     lanes: bool,
+    /// The group's elastic matrices, when its forces may use them.
+    matrices: Option<&'k ElasticMatrices>,
     u: &'k [[f64; 3]],
     v: &'k [[f64; 3]],
 }
@@ -1298,6 +1329,18 @@ impl<'k> Kernel<'k> {
     #[inline(always)]
     fn forces(&self, le: usize, dt: f64, fe: &mut [[f64; 3]; 8], fd: &mut [[f64; 3]; 8]) {
         let ue = self.displacements(le);
+        if let Some(k) = self.matrices.and_then(|m| m.matrix_of(le)) {
+            // Linear elastic: no state to update, no damage to mark.
+            *fe = k.apply(&ue);
+            *fd = [[0.0; 3]; 8];
+            if self.beta > 0.0 {
+                let nodes = &self.conn[le];
+                let ve: [[f64; 3]; 8] = std::array::from_fn(|a| self.v[nodes[a] as usize]);
+                let beta = self.beta;
+                *fd = k.apply(&ve).map(|fa| fa.map(|x| beta * x));
+            }
+            return;
+        }
         let ctx = PointContext {
             char_length: self.lengths[le],
             dt,

@@ -8,6 +8,7 @@ pub mod anchor_pattern;
 pub mod colouring;
 pub mod damage_marks;
 pub mod damage_scan;
+pub mod elastic_matrices;
 pub mod fields;
 pub mod groups;
 pub mod hex8_full;

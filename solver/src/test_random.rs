@@ -21,6 +21,21 @@ impl Lcg {
     }
 }
 
+/// The unit tests' distorted hexahedron (node order of `hex8_shape::NODE_XI`): the unit
+/// cube with every node but the first moved by up to 0.2.
+pub fn distorted_hex() -> [[f64; 3]; 8] {
+    [
+        [0.0, 0.0, 0.0],
+        [1.1, 0.05, -0.02],
+        [1.2, 0.9, 0.1],
+        [-0.1, 1.05, 0.0],
+        [0.05, -0.1, 1.0],
+        [1.0, 0.1, 1.2],
+        [1.1, 1.1, 0.95],
+        [0.0, 0.9, 1.1],
+    ]
+}
+
 /// The unit tests' cracking concrete: E₀ 30 GPa, ν 0.2, ρ 2400 kg/m³, f_t0 3 MPa,
 /// f_c0 20 MPa, f_cu 30 MPa, G_t 100 J/m², G_c 10 kJ/m² (cracks at ε ≈ 1e-4), with its
 /// elastic part.

@@ -45,23 +45,10 @@ fn simulation(lanes: bool, damping: bool, reference: bool) -> Simulation {
     for g in &mut model.groups {
         g.lanes = lanes;
         if reference {
-            g.reference = Some(
-                (0..g.len())
-                    .map(|_| std::array::from_fn(|_| [1e-4 * rand(), 1e-4 * rand(), 1e-4 * rand()]))
-                    .collect(),
-            );
+            g.reference = Some(common::random_references(g.len(), &mut rand));
         }
     }
-    let dt = model.time_step(None, 0.9).unwrap();
-    let mut sim = Simulation::new(model, dt, 0.9).unwrap();
-    for v in sim.v.iter_mut() {
-        *v = [rand(), rand(), 0.5 * rand()];
-    }
-    for &n in &base {
-        sim.v[n as usize] = [0.0; 3];
-    }
-    sim.restart_energy_account();
-    sim
+    common::kicked_simulation(model, &base, &mut rand)
 }
 
 /// Displacements and internal forces after 25 steps.

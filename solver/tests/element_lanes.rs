@@ -69,23 +69,10 @@ fn simulation(
             });
         }
         if reference {
-            g.reference = Some(
-                (0..g.len())
-                    .map(|_| std::array::from_fn(|_| [1e-4 * rand(), 1e-4 * rand(), 1e-4 * rand()]))
-                    .collect(),
-            );
+            g.reference = Some(common::random_references(g.len(), &mut rand));
         }
     }
-    let dt = model.time_step(None, 0.9).unwrap();
-    let mut sim = Simulation::new(model, dt, 0.9).unwrap();
-    for v in sim.v.iter_mut() {
-        *v = [rand(), rand(), 0.5 * rand()];
-    }
-    for &n in &base {
-        sim.v[n as usize] = [0.0; 3];
-    }
-    sim.restart_energy_account();
-    sim
+    common::kicked_simulation(model, &base, &mut rand)
 }
 
 /// Displacements, internal forces and the material states of every point after 25 steps.

@@ -195,22 +195,17 @@ mod tests {
     use crate::element::hex8_full;
     use crate::material::{Material, PointContext};
     use crate::mesh::hex8_shape::NODE_XI;
+    use crate::test_random::{distorted_hex, Lcg};
 
     /// A box cell at `origin` with edges `size`.
     fn cell(origin: [f64; 3], size: [f64; 3]) -> [[f64; 3]; 8] {
         NODE_XI.map(|c| std::array::from_fn(|i| origin[i] + 0.5 * (c[i] + 1.0) * size[i]))
     }
 
+    /// Nodal values of up to 5e-4 from `seed`.
     fn nodal(seed: u64) -> [[f64; 3]; 8] {
-        let mut s = seed;
-        std::array::from_fn(|_| {
-            std::array::from_fn(|_| {
-                s = s
-                    .wrapping_mul(6364136223846793005)
-                    .wrapping_add(1442695040888963407);
-                ((s >> 11) as f64 / (1u64 << 53) as f64 - 0.5) * 1e-3
-            })
-        })
+        let mut lcg = Lcg(seed);
+        std::array::from_fn(|_| std::array::from_fn(|_| 5e-4 * lcg.sym()))
     }
 
     /// K u is the scalar Gauss kernel's force to round-off, on a box cell and on a
@@ -219,16 +214,7 @@ mod tests {
     fn matrix_force_is_the_gauss_kernel_force() {
         let el = Elastic::new("rock", 20e9, 0.25, 2600.0).unwrap();
         let material = Material::Elastic(el);
-        let distorted = [
-            [0.0, 0.0, 0.0],
-            [1.1, 0.05, -0.02],
-            [1.2, 0.9, 0.1],
-            [-0.1, 1.05, 0.0],
-            [0.05, -0.1, 1.0],
-            [1.0, 0.1, 1.2],
-            [1.1, 1.1, 0.95],
-            [0.0, 0.9, 1.1],
-        ];
+        let distorted = distorted_hex();
         for (x, seed) in [
             (cell([3.0, -2.0, 7.5], [0.7, 1.3, 2.1]), 7),
             (distorted, 11),

@@ -202,18 +202,7 @@ mod tests {
     use crate::element::hex8_shape::cartesian_derivatives;
     use crate::material::Elastic;
 
-    fn distorted() -> [[f64; 3]; 8] {
-        [
-            [0.0, 0.0, 0.0],
-            [1.1, 0.05, -0.02],
-            [1.2, 0.9, 0.1],
-            [-0.1, 1.05, 0.0],
-            [0.05, -0.1, 1.0],
-            [1.0, 0.1, 1.2],
-            [1.1, 1.1, 0.95],
-            [0.0, 0.9, 1.1],
-        ]
-    }
+    use crate::test_random::distorted_hex as distorted;
 
     #[test]
     fn table_is_the_shape_derivatives_at_the_gauss_points_and_size_is_640_bytes() {

@@ -379,18 +379,7 @@ fn add_element_forces(
 mod tests {
     use super::*;
 
-    fn distorted() -> [[f64; 3]; 8] {
-        [
-            [0.0, 0.0, 0.0],
-            [1.1, 0.05, -0.02],
-            [1.2, 0.9, 0.1],
-            [-0.1, 1.05, 0.0],
-            [0.05, -0.1, 1.0],
-            [1.0, 0.1, 1.2],
-            [1.1, 1.1, 0.95],
-            [0.0, 0.9, 1.1],
-        ]
-    }
+    use crate::test_random::distorted_hex as distorted;
 
     #[test]
     fn mean_gradient_reproduces_linear_field_and_hourglass_vanishes() {

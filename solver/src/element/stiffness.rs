@@ -118,18 +118,7 @@ mod tests {
     use crate::element::{hex8_full, hex8_uniform};
     use crate::material::{Material, PointContext};
 
-    fn distorted() -> [[f64; 3]; 8] {
-        [
-            [0.0, 0.0, 0.0],
-            [1.1, 0.05, -0.02],
-            [1.2, 0.9, 0.1],
-            [-0.1, 1.05, 0.0],
-            [0.05, -0.1, 1.0],
-            [1.0, 0.1, 1.2],
-            [1.1, 1.1, 0.95],
-            [0.0, 0.9, 1.1],
-        ]
-    }
+    use crate::test_random::distorted_hex as distorted;
 
     fn ctx() -> PointContext {
         PointContext {

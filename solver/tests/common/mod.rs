@@ -34,3 +34,30 @@ pub fn damaging_concrete(elastic: Elastic) -> Material {
         .unwrap(),
     ))
 }
+
+/// Element references of up to ±5e-5 m from `rand` for `n` elements: each element starts
+/// stress-free at its own random nodal displacements.
+pub fn random_references(n: usize, rand: &mut impl FnMut() -> f64) -> Vec<[[f64; 3]; 8]> {
+    (0..n)
+        .map(|_| std::array::from_fn(|_| [1e-4 * rand(), 1e-4 * rand(), 1e-4 * rand()]))
+        .collect()
+}
+
+/// The simulation of `model` at the step `dt` with a random-looking initial velocity from
+/// `rand` on every node but the `fixed` ones, its energy account started there.
+pub fn kicked_simulation(
+    model: dcfm::model::Model,
+    fixed: &[u32],
+    rand: &mut impl FnMut() -> f64,
+) -> dcfm::stage::Simulation {
+    let dt = model.time_step(None, 0.9).unwrap();
+    let mut sim = dcfm::stage::Simulation::new(model, dt, 0.9).unwrap();
+    for v in sim.v.iter_mut() {
+        *v = [rand(), rand(), 0.5 * rand()];
+    }
+    for &n in fixed {
+        sim.v[n as usize] = [0.0; 3];
+    }
+    sim.restart_energy_account();
+    sim
+}

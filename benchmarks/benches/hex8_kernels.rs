@@ -4,6 +4,11 @@
 //! - `full`: 2×2×2 Gauss points (`hex8_full::internal_force`);
 //! - `full_lanes`: the same with the eight Gauss points in SIMD lanes
 //!   (`hex8_full_lanes::internal_force` through `InternalForce`, dispatched like the step);
+//! - `hex8_full/single_matrix`, `hex8_full/stream_64000_matrix`: the same elastic force as
+//!   K u through the element's stiffness matrix (`elastic_matrices::ElementMatrix`, the
+//!   step's path for elastic elements whose geometry repeats), dispatched like the step;
+//!   the sweep with one matrix shared by the 64 000 elements, as a box's repeated cells
+//!   share it;
 //! - `hex8_full_plastic_damage/{scalar,lanes}`: both with the plastic-damage model below
 //!   first yield (the never-yielded shortcut, checked in lanes by the lane kernel);
 //! - `hex8_one_point_plastic_damage/in_place`: the one-point kernel with the plastic-damage
@@ -25,6 +30,7 @@
 use std::hint::black_box;
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use dcfm::element::elastic_matrices::ElementMatrix;
 use dcfm::element::hex8_full::{self, FullGeometry};
 use dcfm::element::hex8_full_lanes::InternalForce;
 use dcfm::element::hex8_uniform::{self, UniformGeometry};
@@ -278,6 +284,79 @@ fn full_lanes(c: &mut Criterion) {
     }
 }
 
+/// K u of one element through its stiffness matrix, inside pulp's dispatch as in the step.
+struct MatrixForce<'a> {
+    k: &'a ElementMatrix,
+    u: &'a [[f64; 3]; 8],
+}
+
+impl LaneWork for MatrixForce<'_> {
+    type Output = [[f64; 3]; 8];
+    #[inline(always)]
+    fn run(self) -> [[f64; 3]; 8] {
+        self.k.apply(self.u)
+    }
+}
+
+/// The 40³ sweep of `stream_64000` with every element's force K u from one shared matrix.
+struct MatrixStream<'a> {
+    k: &'a ElementMatrix,
+    conn: &'a [[u32; 8]],
+    us: &'a [[f64; 3]],
+    f_int: &'a mut [[f64; 3]],
+}
+
+impl LaneWork for MatrixStream<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn run(self) {
+        for nodes in self.conn {
+            let ue: [[f64; 3]; 8] = std::array::from_fn(|a| self.us[nodes[a] as usize]);
+            let f = self.k.apply(&ue);
+            for (a, fa) in f.iter().enumerate() {
+                let p = &mut self.f_int[nodes[a] as usize];
+                p[0] += fa[0];
+                p[1] += fa[1];
+                p[2] += fa[2];
+            }
+        }
+    }
+}
+
+/// `hex8_full/{single,stream_64000}_matrix` (module docs).
+fn full_matrix(c: &mut Criterion) {
+    let x = coords(0.0);
+    let geo = FullGeometry::new(&x).expect("valid element");
+    let k = ElementMatrix::new(&geo, material().elastic());
+    let u = displacements(&x);
+    let mut group = c.benchmark_group("hex8_full");
+    group.throughput(Throughput::Elements(1));
+    group.bench_function("single_matrix", |b| {
+        b.iter(|| {
+            black_box(run_lane_work(MatrixForce {
+                k: black_box(&k),
+                u: black_box(&u),
+            }));
+        })
+    });
+    let (conn, us) = stream_setup();
+    group.throughput(Throughput::Elements(STREAM as u64));
+    group.sample_size(10);
+    group.bench_function("stream_64000_matrix", |b| {
+        let mut f_int = vec![[0.0; 3]; us.len()];
+        b.iter(|| {
+            run_lane_work(MatrixStream {
+                k: &k,
+                conn: &conn,
+                us: &us,
+                f_int: &mut f_int,
+            });
+            black_box(&mut f_int);
+        })
+    });
+    group.finish();
+}
+
 /// One one-point plastic-damage element below first yield, its state updated in place
 /// (`hex8_uniform::internal_force_in_place`), as the step runs it: inside pulp's dispatch.
 struct OnePointInPlace<'a> {
@@ -369,6 +448,7 @@ criterion_group!(
     one_point,
     full,
     full_lanes,
+    full_matrix,
     one_point_plastic_damage
 );
 criterion_main!(benches);

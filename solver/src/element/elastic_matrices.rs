@@ -31,6 +31,7 @@ use std::collections::HashMap;
 use crate::element::hex8_full::FullGeometry;
 use crate::element::lanes::F64s;
 use crate::element::stiffness::full_stiffness;
+use crate::fnv::Fnv64;
 use crate::material::Elastic;
 
 /// Elements that must share a geometry before it gets a matrix: 4,608 bytes of matrix
@@ -116,33 +117,50 @@ impl ElasticMatrices {
     /// and elastic constants `el`. `None` when no geometry is shared by [`MIN_SHARE`]
     /// elements (or one has a non-positive Jacobian: the Gauss kernel then runs, and the
     /// group's own checks report the element).
+    ///
+    /// Two passes, so that a mesh without repeated cells costs 16 bytes per element while
+    /// the set is built, not a 640-byte key per element: the first counts each rounded
+    /// geometry by a 64-bit hash of its bits (FNV-1a; a collision can only over-count),
+    /// the second compares the bits of the elements whose hash was counted often enough.
     pub fn new(coords: &[[[f64; 3]; 8]], el: &Elastic) -> Option<Self> {
         let q = quantum(coords);
-        let mut geometries: Vec<FullGeometry> = Vec::new();
-        let mut seen: HashMap<[u64; 80], u32> = HashMap::new();
-        let mut shape_of = Vec::with_capacity(coords.len());
-        for x in coords {
+        let rounded_key = |x: &[[f64; 3]; 8]| -> Option<[u64; 80]> {
             let x0 = x[0];
-            let relative: [[f64; 3]; 8] = x.map(|xa| std::array::from_fn(|j| xa[j] - x0[j]));
-            let rounded = relative.map(|xa| xa.map(|v| (v / q).round() * q));
-            let next = u32::try_from(geometries.len()).ok()?;
-            let s = *seen
-                .entry(key(&FullGeometry::new(&rounded)?))
-                .or_insert(next);
-            if s == next {
-                // The first element of a shape stands for it, with its own coordinates.
-                geometries.push(FullGeometry::new(&relative)?);
+            let rounded = x.map(|xa| std::array::from_fn(|j| ((xa[j] - x0[j]) / q).round() * q));
+            Some(key(&FullGeometry::new(&rounded)?))
+        };
+        let mut hashes = Vec::with_capacity(coords.len());
+        let mut hash_count: HashMap<u64, usize> = HashMap::new();
+        for x in coords {
+            let mut h = Fnv64::new();
+            for v in rounded_key(x)? {
+                h.u64(v);
             }
-            shape_of.push(s);
+            *hash_count.entry(h.finish()).or_default() += 1;
+            hashes.push(h.finish());
         }
-        let mut count = vec![0usize; geometries.len()];
-        for &s in &shape_of {
-            count[s as usize] += 1;
+        // Candidates: their exact keys, the first element of each standing for its shape
+        // with its own (unrounded) relative coordinates, and how many elements have it.
+        let mut seen: HashMap<[u64; 80], usize> = HashMap::new();
+        let mut shapes: Vec<(FullGeometry, usize)> = Vec::new();
+        let mut shape_of = vec![NONE; coords.len()];
+        for (le, x) in coords.iter().enumerate() {
+            if hash_count[&hashes[le]] < MIN_SHARE {
+                continue;
+            }
+            let s = *seen.entry(rounded_key(x)?).or_insert(shapes.len());
+            if s == shapes.len() {
+                let x0 = x[0];
+                let relative = x.map(|xa| std::array::from_fn(|j| xa[j] - x0[j]));
+                shapes.push((FullGeometry::new(&relative)?, 0));
+            }
+            shapes[s].1 += 1;
+            shape_of[le] = u32::try_from(s).ok()?;
         }
-        let mut matrix_of_shape = vec![NONE; geometries.len()];
+        let mut matrix_of_shape = vec![NONE; shapes.len()];
         let mut matrices = Vec::new();
-        for (s, g) in geometries.iter().enumerate() {
-            if count[s] >= MIN_SHARE {
+        for (s, (g, count)) in shapes.iter().enumerate() {
+            if *count >= MIN_SHARE {
                 matrix_of_shape[s] = matrices.len() as u32;
                 matrices.push(ElementMatrix::new(g, el));
             }
@@ -152,7 +170,13 @@ impl ElasticMatrices {
         }
         let of = shape_of
             .iter()
-            .map(|&s| matrix_of_shape[s as usize])
+            .map(|&s| {
+                if s == NONE {
+                    NONE
+                } else {
+                    matrix_of_shape[s as usize]
+                }
+            })
             .collect();
         Some(Self { matrices, of })
     }

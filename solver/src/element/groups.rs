@@ -87,7 +87,9 @@ pub struct ElementGroup {
     /// for the best instruction set of the CPU: fully integrated elements with their eight
     /// Gauss points in lanes ([`hex8_full_lanes`]), linear elastic one-point elements eight
     /// at a time ([`hex8_uniform_lanes`], in the dynamic stage's in-place passes); `true`
-    /// by default.
+    /// by default. With it, linear elastic fully integrated elements whose geometry
+    /// repeats use their stiffness matrices instead ([`ElementGroup::elastic_matrices`]):
+    /// the Gauss kernel's forces to round-off, not bit for bit.
     /// `false` runs the scalar kernels of [`hex8_full`] and [`hex8_uniform`], the
     /// reference the tests compare with.
     pub lanes: bool,

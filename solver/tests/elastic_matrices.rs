@@ -12,7 +12,7 @@ mod common;
 use dcfm::element::Integration;
 use dcfm::material::{Elastic, Material};
 use dcfm::mesh::BoxMeshSpec;
-use dcfm::model::{Model, Rayleigh, RegionSetup};
+use dcfm::model::RegionSetup;
 use dcfm::stage::Simulation;
 
 /// 7 × 5 × 4 cells of 0.37 × 0.61 × 0.29 m with their corner at (103.7, −52.3, 18.9),
@@ -31,15 +31,7 @@ fn simulation(lanes: bool, damping: bool, reference: bool) -> Simulation {
         integration: Integration::Full,
         hourglass: 0.05,
     };
-    let mut model = Model::new(mesh, &[setup], "matrices test").unwrap();
-    let base = model.mesh.node_sets["rock.zmin"].clone();
-    model.constraints.fix(&base, 0b111);
-    if damping {
-        model.damping = Rayleigh {
-            alpha: 0.1,
-            beta: 1e-5,
-        };
-    }
+    let (mut model, base) = common::rock_on_fixed_base(mesh, setup, "matrices test", damping);
     let mut lcg = common::Lcg(0x0bad_cafe_1234_5678u64);
     let mut rand = move || lcg.centred();
     for g in &mut model.groups {

@@ -11,7 +11,7 @@ use dcfm::element::Integration;
 use dcfm::material::plastic_damage::PlasticDamageParams;
 use dcfm::material::{Elastic, Material, PlasticDamage};
 use dcfm::mesh::BoxMeshSpec;
-use dcfm::model::{Model, Rayleigh, RegionSetup};
+use dcfm::model::RegionSetup;
 use dcfm::stage::Simulation;
 
 /// 7 × 5 × 3 elements of rock, every interior node moved by up to 20 % of the spacing,
@@ -49,15 +49,7 @@ fn simulation(
         integration,
         hourglass: 0.05,
     };
-    let mut model = Model::new(mesh, &[setup], "lanes test").unwrap();
-    let base = model.mesh.node_sets["rock.zmin"].clone();
-    model.constraints.fix(&base, 0b111);
-    if damping {
-        model.damping = Rayleigh {
-            alpha: 0.1,
-            beta: 1e-5,
-        };
-    }
+    let (mut model, base) = common::rock_on_fixed_base(mesh, setup, "lanes test", damping);
     let mesh = model.mesh.clone();
     for g in &mut model.groups {
         g.lanes = lanes;

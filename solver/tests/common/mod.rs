@@ -61,3 +61,23 @@ pub fn kicked_simulation(
     sim.restart_energy_account();
     sim
 }
+
+/// The model of `setup` on `mesh` (one region "rock") with its base `rock.zmin` fixed and,
+/// when `damping`, Rayleigh damping α 0.1, β 1e-5; with the base's nodes.
+pub fn rock_on_fixed_base(
+    mesh: dcfm::mesh::Mesh,
+    setup: dcfm::model::RegionSetup,
+    name: &str,
+    damping: bool,
+) -> (dcfm::model::Model, Vec<u32>) {
+    let mut model = dcfm::model::Model::new(mesh, &[setup], name).unwrap();
+    let base = model.mesh.node_sets["rock.zmin"].clone();
+    model.constraints.fix(&base, 0b111);
+    if damping {
+        model.damping = dcfm::model::Rayleigh {
+            alpha: 0.1,
+            beta: 1e-5,
+        };
+    }
+    (model, base)
+}

@@ -21,6 +21,7 @@ pub mod element;
 pub mod error;
 pub mod fnv;
 pub mod load;
+pub mod mass_scaling;
 pub mod material;
 pub mod mesh;
 pub mod model;

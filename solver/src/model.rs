@@ -128,6 +128,11 @@ pub struct Model {
     /// given to [`Model::new`]): the numbering of the `region` field of the outputs
     /// (`Model::region_number`), whose names the VTU files carry (docs/outputs.md).
     pub region_names: Vec<String>,
+    /// Density factor of every element from `time.mass_scaling` (global element order;
+    /// empty without mass scaling: every factor 1), see `crate::mass_scaling`.
+    pub mass_factor: Vec<f64>,
+    /// What the mass scaling did, if the case asked for it.
+    pub mass_scaling: Option<crate::mass_scaling::MassScalingSummary>,
 }
 
 impl Model {
@@ -177,22 +182,6 @@ impl Model {
                 ));
             }
         }
-        let mut mass = vec![0.0; mesh.n_nodes()];
-        for g in &groups {
-            let rho = g.material.density();
-            for &e in &g.elements {
-                let m = element_masses(&mesh.element_coords(e as usize), rho);
-                for (a, &n) in mesh.elements[e as usize].iter().enumerate() {
-                    mass[n as usize] += m[a];
-                }
-            }
-        }
-        if let Some(n) = mass.iter().position(|&m| m.is_nan() || m <= 0.0) {
-            return Err(DcfmError::Mesh(format!(
-                "node {n} belongs to no element (zero mass)"
-            )));
-        }
-        let element_steps = element_steps(&mesh, &groups, regions)?;
         let mut element_location = vec![(0, 0); mesh.n_elements()];
         for (gi, g) in groups.iter().enumerate() {
             for (le, &e) in g.elements.iter().enumerate() {
@@ -215,8 +204,8 @@ impl Model {
             mesh,
             groups,
             n_colours,
-            inv_mass: mass.iter().map(|m| 1.0 / m).collect(),
-            mass,
+            inv_mass: Vec::new(),
+            mass: Vec::new(),
             constraints: Constraints::new(n),
             nodal_loads: Vec::new(),
             gravity: None,
@@ -229,9 +218,19 @@ impl Model {
                 length: 0.0,
                 speed: 0.0,
             },
-            element_steps,
+            element_steps: Vec::new(),
             extra_omega_squared: 0.0,
+            mass_factor: Vec::new(),
+            mass_scaling: None,
         };
+        model.mass = model.lumped_masses();
+        if let Some(n) = model.mass.iter().position(|&m| m.is_nan() || m <= 0.0) {
+            return Err(DcfmError::Mesh(format!(
+                "node {n} belongs to no element (zero mass)"
+            )));
+        }
+        model.inv_mass = model.mass.iter().map(|m| 1.0 / m).collect();
+        model.element_steps = element_steps(&model.mesh, &model.groups, regions)?;
         model.refresh_stable_step();
         Ok(model)
     }
@@ -321,6 +320,29 @@ impl Model {
         }
     }
 
+    /// Density factor of global element `e` from `time.mass_scaling` (1 without it).
+    pub fn mass_factor_of(&self, e: usize) -> f64 {
+        self.mass_factor.get(e).copied().unwrap_or(1.0)
+    }
+
+    /// Lumped nodal masses of the current element groups (ρ × the element's mass factor;
+    /// anchor bars not included): what `Model::new` builds, and the static stage's
+    /// activation rebuilds after an excavation. Zero at a node of no element.
+    pub fn lumped_masses(&self) -> Vec<f64> {
+        let mut mass = vec![0.0; self.mesh.n_nodes()];
+        for g in &self.groups {
+            let rho = g.material.density();
+            for (le, &e) in g.elements.iter().enumerate() {
+                let e = e as usize;
+                let m = element_masses(&self.mesh.element_coords(e), rho * self.mass_factor_of(e));
+                for (a, &n) in g.conn[le].iter().enumerate() {
+                    mass[n as usize] += m[a];
+                }
+            }
+        }
+        mass
+    }
+
     /// Recompute `inv_mass` after constraints change: 0 where all DOFs are constrained.
     pub fn refresh_inverse_mass(&mut self) {
         for (i, w) in self.inv_mass.iter_mut().enumerate() {
@@ -388,9 +410,9 @@ impl Model {
             let alpha = self.group_damping(gi).alpha;
             let rho = g.material.density();
             for &e in &g.elements {
-                let m = crate::element::lumped_mass::element_masses(
+                let m = element_masses(
                     &self.mesh.element_coords(e as usize),
-                    rho,
+                    rho * self.mass_factor_of(e as usize),
                 );
                 for (a, &n) in self.mesh.elements[e as usize].iter().enumerate() {
                     am[n as usize] += alpha * m[a];

@@ -23,62 +23,17 @@ fn wave_speed() -> f64 {
     (YOUNG / DENSITY).sqrt()
 }
 
-/// A bar along x, cross-section 2 m × 2 m (one element), with element lengths `lengths`
-/// (m) in x order; elastic, ν = 0, fully integrated, free everywhere.
+/// A bar along x (common::elastic_bar) with element lengths `lengths` (m).
 fn bar(lengths: &[f64]) -> Model {
-    let n = lengths.len();
-    let mut mesh = BoxMeshSpec::single("rock", [0.0; 3], [n as f64, 2.0, 2.0], [n, 1, 1])
-        .build("subcycling bar")
-        .unwrap();
-    let mut edge = vec![0.0; n + 1];
-    for k in 0..n {
-        edge[k + 1] = edge[k] + lengths[k];
-    }
-    for x in mesh.coords.iter_mut() {
-        x[0] = edge[x[0].round() as usize];
-    }
-    let setup = RegionSetup {
-        region: "rock".to_string(),
-        material: Material::Elastic(Elastic::new("rock", YOUNG, 0.0, DENSITY).unwrap()),
-        integration: Integration::Full,
-        hourglass: 0.05,
-    };
-    Model::new(mesh, &[setup], "subcycling bar").unwrap()
+    common::elastic_bar(lengths, YOUNG, DENSITY, "subcycling bar")
 }
 
-/// sin² pulse of width `w` centred at `x0`: the velocity profile g(x) (m/s per unit v0)
-/// and its integral G(x) = ∫_{−∞}^x g.
-fn pulse(x: f64, x0: f64, w: f64) -> (f64, f64) {
-    let s = x - (x0 - 0.5 * w);
-    if s <= 0.0 {
-        (0.0, 0.0)
-    } else if s >= w {
-        (0.0, 0.5 * w)
-    } else {
-        let a = std::f64::consts::PI * s / w;
-        (
-            a.sin().powi(2),
-            0.5 * s - w / (4.0 * std::f64::consts::PI) * (2.0 * a).sin(),
-        )
-    }
-}
-
-/// The bar `lengths` with a right-going P pulse u = f(x − ct), v = −c f′ (amplitude v0 in
-/// velocity), centred at `x0`, the leapfrog's V^{−½} taken at t = −Δt/2.
+/// The bar `lengths` with a right-going P pulse (common::launch_right_going_pulse).
 fn pulse_run(lengths: &[f64], max_level: Option<u8>, x0: f64, w: f64, v0: f64) -> Simulation {
     let model = bar(lengths);
     let dt = model.time_step(None, 0.9).unwrap();
     let mut sim = Simulation::new(model, dt, 0.9).unwrap();
-    let c = wave_speed();
-    for i in 0..sim.u.len() {
-        let x = sim.model.mesh.coords[i][0];
-        // Right-going: velocity v0 g(x − ct); displacement −(v0/c) G(x − ct).
-        let (_, big) = pulse(x, x0, w);
-        sim.u[i] = [-(v0 / c) * big, 0.0, 0.0];
-        let (g, _) = pulse(x + 0.5 * c * dt, x0, w);
-        sim.v[i] = [v0 * g, 0.0, 0.0];
-    }
-    sim.restart_energy_account();
+    common::launch_right_going_pulse(&mut sim, wave_speed(), x0, w, v0);
     if let Some(l) = max_level {
         sim.enable_subcycling(l, 0.9).unwrap();
     }

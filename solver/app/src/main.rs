@@ -159,6 +159,11 @@ fn main() -> ExitCode {
                         g.material.density()
                     );
                 }
+                if let Some(scaling) = &m.mass_scaling {
+                    for line in scaling.describe() {
+                        say!("{line}");
+                    }
+                }
                 say!(
                     "stable    critical Δt = {:.4e} s (element {} in region '{}', L = {:.4e} m, c_p = {:.1} m/s); with damping {:.4e} s",
                     m.stable.critical,

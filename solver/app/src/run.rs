@@ -101,6 +101,10 @@ pub struct RunSummary {
     /// single-step equivalent (every element every step), so it includes the saving.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub subcycling: Option<dcfm::stage::subcycling::SubcyclingSummary>,
+    /// The selective mass scaling (`time.mass_scaling`): elements made heavier, the mass
+    /// added (total and by region) and the largest factor; absent without it.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub mass_scaling: Option<dcfm::mass_scaling::MassScalingSummary>,
 }
 
 /// Turn on the case's subcycling (`time.subcycling`) for the dynamic stage: refused when
@@ -880,6 +884,7 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
         resumed_with_changes: changes,
         probes: columns.probes,
         subcycling: sim.subcycling().cloned(),
+        mass_scaling: sim.model.mass_scaling.clone(),
     };
     write_summary(&out.join("summary.json"), &summary)?;
     outcome.map(|()| summary)

@@ -69,6 +69,11 @@ pub struct TimeSection {
     /// (`stage::subcycling`); checked by `case::build::time::subcycling_level`.
     #[serde(default)]
     pub subcycling: Option<toml::Value>,
+    /// Selective mass scaling: `"off"` (default) or `{ min_element_step = Δt_min,
+    /// max_added_fraction = 0.05 }` (`crate::mass_scaling`); checked by
+    /// `case::build::time::mass_scaling_settings`.
+    #[serde(default)]
+    pub mass_scaling: Option<toml::Value>,
 }
 
 /// Default step budget of `[time] max_steps`.

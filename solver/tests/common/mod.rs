@@ -81,3 +81,66 @@ pub fn rock_on_fixed_base(
     }
     (model, base)
 }
+
+/// A free bar along x, cross-section 2 m × 2 m (one element), with element lengths
+/// `lengths` (m) in x order; elastic with E `young`, ν = 0 (a 1D P wave in a 3D mesh) and
+/// ρ `density`, fully integrated.
+pub fn elastic_bar(lengths: &[f64], young: f64, density: f64, name: &str) -> dcfm::model::Model {
+    let n = lengths.len();
+    let mut mesh =
+        dcfm::mesh::BoxMeshSpec::single("rock", [0.0; 3], [n as f64, 2.0, 2.0], [n, 1, 1])
+            .build(name)
+            .unwrap();
+    let mut edge = vec![0.0; n + 1];
+    for k in 0..n {
+        edge[k + 1] = edge[k] + lengths[k];
+    }
+    for x in mesh.coords.iter_mut() {
+        x[0] = edge[x[0].round() as usize];
+    }
+    let setup = dcfm::model::RegionSetup {
+        region: "rock".to_string(),
+        material: Material::Elastic(Elastic::new("rock", young, 0.0, density).unwrap()),
+        integration: dcfm::element::Integration::Full,
+        hourglass: 0.05,
+    };
+    dcfm::model::Model::new(mesh, &[setup], name).unwrap()
+}
+
+/// sin² pulse of width `w` centred at `x0`: the velocity profile g(x) (m/s per unit v0)
+/// and its integral G(x) = ∫_{−∞}^x g.
+pub fn sin2_pulse(x: f64, x0: f64, w: f64) -> (f64, f64) {
+    let s = x - (x0 - 0.5 * w);
+    if s <= 0.0 {
+        (0.0, 0.0)
+    } else if s >= w {
+        (0.0, 0.5 * w)
+    } else {
+        let a = std::f64::consts::PI * s / w;
+        (
+            a.sin().powi(2),
+            0.5 * s - w / (4.0 * std::f64::consts::PI) * (2.0 * a).sin(),
+        )
+    }
+}
+
+/// Start `sim` (a bar along x with wave speed `c`) on a right-going P pulse
+/// u = f(x − ct), v = −c f′ (amplitude `v0` in velocity, width `w`, centred at `x0`), the
+/// leapfrog's V^{−½} taken at t = −Δt/2, and restart its energy account.
+pub fn launch_right_going_pulse(
+    sim: &mut dcfm::stage::Simulation,
+    c: f64,
+    x0: f64,
+    w: f64,
+    v0: f64,
+) {
+    let dt = sim.dt;
+    for i in 0..sim.u.len() {
+        let x = sim.model.mesh.coords[i][0];
+        let (_, big) = sin2_pulse(x, x0, w);
+        sim.u[i] = [-(v0 / c) * big, 0.0, 0.0];
+        let (g, _) = sin2_pulse(x + 0.5 * c * dt, x0, w);
+        sim.v[i] = [v0 * g, 0.0, 0.0];
+    }
+    sim.restart_energy_account();
+}

@@ -121,6 +121,7 @@ fn build(
 ) -> Result<Case> {
     let max_steps = time::check_time(&file.time, label)?;
     let subcycling = time::subcycling_level(&file.time, label)?;
+    let mass_scaling = time::mass_scaling_settings(&file.time, label)?;
     let motions = motions::build_motions(&mut file, label, dir, given)?;
     let mut mesh = mesh::build_mesh(&file.mesh, label, dir)?;
     mesh::add_node_sets(&mut mesh, &file.node_sets, label)?;
@@ -129,6 +130,9 @@ fn build(
     let setups = materials::build_regions(&file.regions, &materials, label)?;
     let mut model = Model::new(mesh, &setups, label)?;
     materials::check_element_sizes(&model, label)?;
+    if let Some(settings) = &mass_scaling {
+        crate::mass_scaling::apply_mass_scaling(&mut model, settings, label)?;
+    }
     if !file.interfaces.is_empty() {
         let system = crate::contact::ContactSystem::new(&model.mesh, &file.interfaces, label)?;
         model.contact = Some(system);

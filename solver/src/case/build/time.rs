@@ -70,6 +70,55 @@ pub(super) fn subcycling_level(section: &TimeSection, label: &str) -> Result<Opt
     }
 }
 
+/// The settings of `time.mass_scaling`: `None` for `"off"` or no entry, else a table
+/// `{ min_element_step = Δt_min, max_added_fraction = f }` (the fraction optional, default
+/// [`crate::mass_scaling::DEFAULT_MAX_ADDED_FRACTION`]); the values themselves are checked
+/// where they are applied (`crate::mass_scaling::apply_mass_scaling`).
+pub(super) fn mass_scaling_settings(
+    section: &TimeSection,
+    label: &str,
+) -> Result<Option<crate::mass_scaling::MassScalingSettings>> {
+    use crate::mass_scaling::{MassScalingSettings, DEFAULT_MAX_ADDED_FRACTION};
+    let expected = "\"off\" or a table { min_element_step = Δt_min (s), max_added_fraction = f } \
+                    (f optional, default 0.05 of a region's mass): elements whose own step is \
+                    below Δt_min are made heavy enough to step at it";
+    let Some(value) = &section.mass_scaling else {
+        return Ok(None);
+    };
+    let bad = |field: &str, v: &dyn std::fmt::Display| {
+        DcfmError::invalid(label, field, v.to_string(), expected)
+    };
+    let number = |t: &toml::map::Map<String, toml::Value>, key: &str| -> Result<Option<f64>> {
+        match t.get(key) {
+            None => Ok(None),
+            Some(toml::Value::Float(x)) => Ok(Some(*x)),
+            Some(toml::Value::Integer(n)) => Ok(Some(*n as f64)),
+            Some(v) => Err(bad(&format!("time.mass_scaling.{key}"), v)),
+        }
+    };
+    match value {
+        toml::Value::String(s) if s == "off" => Ok(None),
+        toml::Value::Table(t) => {
+            if let Some(k) = t
+                .keys()
+                .find(|k| !matches!(k.as_str(), "min_element_step" | "max_added_fraction"))
+            {
+                return Err(bad(&format!("time.mass_scaling.{k}"), &"an unknown key"));
+            }
+            let Some(min_element_step) = number(t, "min_element_step")? else {
+                return Err(bad("time.mass_scaling.min_element_step", &"missing"));
+            };
+            let max_added_fraction =
+                number(t, "max_added_fraction")?.unwrap_or(DEFAULT_MAX_ADDED_FRACTION);
+            Ok(Some(MassScalingSettings {
+                min_element_step,
+                max_added_fraction,
+            }))
+        }
+        v => Err(bad("time.mass_scaling", v)),
+    }
+}
+
 /// Smallest `time.dt` accepted, as a fraction of the stable step: a step a billionth of
 /// the stable one needs 10⁹ steps to cross one element, each moving the nodes by less
 /// than the round-off of their coordinates — a vanishing step (1e-300, a units slip), not

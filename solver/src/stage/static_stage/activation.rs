@@ -10,7 +10,6 @@
 
 use crate::boundary::Constraints;
 use crate::element::groups::ElementGroup;
-use crate::element::lumped_mass::element_masses;
 use crate::model::Model;
 
 /// The active set of a model during (and after) the static stage.
@@ -78,16 +77,7 @@ impl Activation {
                 model.element_location[e as usize] = (gi as u32, le as u32);
             }
         }
-        let mut mass = vec![0.0; model.mesh.n_nodes()];
-        for g in &model.groups {
-            let rho = g.material.density();
-            for (le, &e) in g.elements.iter().enumerate() {
-                let m = element_masses(&model.mesh.element_coords(e as usize), rho);
-                for (a, &n) in g.conn[le].iter().enumerate() {
-                    mass[n as usize] += m[a];
-                }
-            }
-        }
+        let mass = model.lumped_masses();
         for (d, &m) in self.dormant.iter_mut().zip(&mass) {
             *d = m <= 0.0;
         }

@@ -3,6 +3,7 @@
 pub mod dalembert;
 pub mod geostatic;
 pub mod kirsch;
+pub mod point_mass_junction;
 pub mod site_response;
 
 pub use dalembert::{HalfSinePulse1D, PulseShape};

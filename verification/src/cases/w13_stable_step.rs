@@ -8,6 +8,8 @@
 //!   (b) 6×6×6 uniform mesh, boundary fixed, random initial velocities, 3000 steps:
 //!       one-point elements bounded at Δt = 0.99 h/c_p and caught as unstable at 1.25 h/c_p;
 //!       fully integrated elements bounded at the default 0.9 h/c_p
+//!   (c) selective mass scaling (w13_mass_scaling.rs): a thin slab's step lifted to its
+//!       neighbours', stable there, the added mass transmitting a pulse as a point mass
 //! ```
 //!
 //! Reference: docs/verification_references.md §W13 (single-element bound 0.775 h/c_p; uniform mesh stable up
@@ -162,5 +164,6 @@ pub fn run() -> Result<CaseOutput> {
         full,
         SOURCE,
     );
+    super::w13_mass_scaling::checks(&mut check)?;
     Ok(check.finish().into())
 }

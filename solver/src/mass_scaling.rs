@@ -8,10 +8,11 @@
 //!
 //! f_e = (Δt_min / Δt_e)²   (f_e > 1; 1 for every other element),
 //!
-//! (elements within [`NEGLIGIBLE`] of Δt_min left alone), which makes its own step exactly Δt_min (the "conventional" selective mass scaling of
-//! LS-DYNA's `DT2MS < 0`: mass added only where an element is below the target). The run's
-//! step then follows from the scaled model as always (safety × the critical step with
-//! anchors, springs and damping folded in).
+//! which makes its own step exactly Δt_min (elements within [`NEGLIGIBLE`] of Δt_min are
+//! left alone): the "conventional" selective mass scaling of LS-DYNA's `DT2MS < 0`, mass
+//! added only where an element is below the target. The run's step then follows from the
+//! scaled model as always (safety × the critical step with anchors, springs and damping
+//! folded in).
 //!
 //! The added mass is mass like any other: inertia, weight under gravity and the
 //! mass-proportional damping αM all see it, as the lumped masses carry it. It changes the

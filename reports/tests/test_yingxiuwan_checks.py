@@ -108,13 +108,15 @@ def make_run(tmp: Path, *, gap: float = 0.0, dt_drop: float = 0.0, dv_drop: floa
              anchor: float = 0.5, area_drift: float = 0.0, compressed: bool = False,
              no_flow: bool = False, undamaged_stress: float = 0.5, damaged_stress: float = 0.9,
              bolt_sign: float = 1.0, full_pvd: bool = False, fall: float = 0.0,
-             bolt_plastic: float = 0.0) -> tuple[Path, Path]:
+             bolt_plastic: float = 0.0, dt_gain: float = 0.1, kappa_still: bool = False) -> tuple[Path, Path]:
     """A run of two elements and one bolt over two frames (t = 0: the state at which the
     bolt is installed; t = 1 s). Element 0 (rock, one point) cracks in uniaxial tension,
     its stress at `damaged_stress` × f_t0 (effective), its plastic strain growing unless
     `no_flow`; element 1 (lining, full integration) stays undamaged in uniaxial tension,
     0.5 f_t0 at t = 0 and `undamaged_stress` × f_t0 at t = 1 s. The rock stretches by STRETCH along the bolt, whose force
-    is `bolt_sign` × EA STRETCH, its plastic strain `bolt_plastic` at t = 1 s. The lining's far face (x = 2) moves down by `fall` at t = 1 s."""
+    is `bolt_sign` × EA STRETCH, its plastic strain `bolt_plastic` at t = 1 s. The lining's far face (x = 2) moves down by `fall` at t = 1 s.
+    The rock's d_t grows by `dt_gain` (κ_t = d_t, or κ_t left at its t = 0 value when
+    `kappa_still`)."""
     run = tmp / "run"
     run.mkdir()
     case = tmp / "case.toml"
@@ -126,7 +128,8 @@ def make_run(tmp: Path, *, gap: float = 0.0, dt_drop: float = 0.0, dv_drop: floa
         u = np.zeros((12, 3))
         u[:, 0] = STRETCH * POINTS[:, 0] * k
         u[POINTS[:, 0] == 2.0, 2] -= fall * k
-        d_t = np.array([0.1 + 0.1 * k - (dt_drop if k == 1 else 0.0), 0.0])
+        d_t = np.array([0.1 + dt_gain * k - (dt_drop if k == 1 else 0.0), 0.0])
+        kappa_t = np.array([0.1, 0.0]) if kappa_still else d_t
         d_c = np.zeros(2)
         # D of eq. (24) in uniaxial tension (r = 1, s = 1): d_t.
         stress = np.array([uniaxial((1.0 - d_t[0]) * damaged_stress * FT_ROCK),
@@ -136,7 +139,7 @@ def make_run(tmp: Path, *, gap: float = 0.0, dt_drop: float = 0.0, dv_drop: floa
         write_vtu(run / f"f{k}.vtu",
                   {"displacement": u, "velocity": np.zeros((12, 3)), "contact_state": state, "contact_gap": gaps},
                   {"stress": stress, "damage": d_t, "damage_tension": d_t, "damage_compression": d_c,
-                   "kappa_tension": d_t, "kappa_compression": d_c, "plastic_strain": ep,
+                   "kappa_tension": kappa_t, "kappa_compression": d_c, "plastic_strain": ep,
                    "region": np.array([0.0, 1.0]), "active": np.array([1.0, 1.0])},
                   {"Points": POINTS, "connectivity": CONN.reshape(-1), "offsets": np.array([8, 16])}, compressed)
         frames.append(f'<DataSet timestep="{t}" file="f{k}.vtu"/>')
@@ -192,6 +195,25 @@ def test_broken_physics_fails_its_check(tmp_path, broken, name):
     run, case = make_run(tmp_path, **broken)
     assert failed(run, case) == {name}
     assert yc.main([str(run), "--case", str(case)]) == 1
+
+
+def test_damage_growth_within_the_averages_roundoff_is_judged_on_plastic_flow(tmp_path):
+    # d_t up by one ulp with κ_t on the same double (the rounding of an element average):
+    # accepted when the plastic strain changed, counted in the detail.
+    one_ulp = math.ulp(0.1)
+    run, case = make_run(tmp_path, dt_gain=one_ulp, kappa_still=True)
+    result = {c["name"]: c for c in yc.run_checks(run, case)}["damage only with plastic flow"]
+    assert result["passed"] and "; 1 grew by at most" in result["what"], result
+
+
+@pytest.mark.parametrize("gain, no_flow", [(8 * 2.0**-52 * 1.5, False), (math.ulp(0.1), True)])
+def test_damage_growth_beyond_roundoff_or_without_flow_fails(tmp_path, gain, no_flow):
+    # κ_t still: a growth of d_t beyond the round-off bound, or one within it without a
+    # change of plastic strain, is damage without plastic flow.
+    sub = tmp_path / f"g{gain}{no_flow}"
+    sub.mkdir()
+    run, case = make_run(sub, dt_gain=gain, kappa_still=True, no_flow=no_flow)
+    assert "damage only with plastic flow" in failed(run, case)
 
 
 def test_an_unreadable_frame_is_named(tmp_path):

@@ -62,6 +62,20 @@ impl SofteningLaw {
         1.0 - (-self.r * y).exp()
     }
 
+    /// [`Self::effective`] and [`Self::damage`] at one y, bit for bit theirs. With r = 1
+    /// (d = b, the default of both laws) one exponential serves both: e^(−(1−r)y) = e^(−0)
+    /// = 1 exactly and e^(−(2−r)y) = e^(−ry) = e^(−y), the same argument rounded the same
+    /// way; any other r (or a non-finite y, where 0·y is NaN) takes the two functions.
+    #[inline]
+    pub fn effective_and_damage(&self, y: f64) -> (f64, f64) {
+        if self.r == 1.0 && y != 0.0 && y.is_finite() {
+            let e = (-y).exp();
+            (self.f0 * ((1.0 + self.a) - self.a * e), 1.0 - e)
+        } else {
+            (self.effective(y), self.damage(y))
+        }
+    }
+
     /// Normalised dissipated energy κ(y) = [(1+a)(1−e^(−y)) − (a/2)(1−e^(−2y))]/(1 + a/2).
     #[inline]
     pub fn kappa(&self, y: f64) -> f64 {
@@ -302,5 +316,39 @@ mod tests {
         let h = 1e-7;
         let slope = (law.effective(h) - law.effective(0.0)) / h * b;
         assert!(1.0 + slope / 30e9 < 0.0);
+    }
+
+    proptest::proptest! {
+        /// The shared-exponential evaluation is the two separate functions bit for bit, for
+        /// r = 1 (one exponential) and any other r (the separate functions), over the
+        /// scaled plastic strains a run reaches, down to saturation (e^(−y) below 2⁻⁵³).
+        #[test]
+        fn effective_and_damage_is_the_separate_functions_bit_for_bit(
+            f0 in 1.0e5f64..1.0e8,
+            a in 0.0f64..8.0,
+            r_is_one in proptest::bool::ANY,
+            r_other in 0.05f64..0.999,
+            y in proptest::prop_oneof![0.0f64..1.0, 0.0f64..60.0, proptest::strategy::Just(0.0)],
+        ) {
+            let law = SofteningLaw { f0, a, r: if r_is_one { 1.0 } else { r_other }, g_f: 100.0 };
+            let (c, d) = law.effective_and_damage(y);
+            proptest::prop_assert_eq!(c.to_bits(), law.effective(y).to_bits(), "c̄ at y = {}", y);
+            proptest::prop_assert_eq!(d.to_bits(), law.damage(y).to_bits(), "D at y = {}", y);
+        }
+    }
+
+    #[test]
+    fn effective_and_damage_keeps_the_separate_functions_at_non_finite_y() {
+        let law = SofteningLaw {
+            f0: 2.0e6,
+            a: 0.5,
+            r: 1.0,
+            g_f: 100.0,
+        };
+        for y in [f64::INFINITY, f64::NAN] {
+            let (c, d) = law.effective_and_damage(y);
+            assert_eq!(c.to_bits(), law.effective(y).to_bits());
+            assert_eq!(d.to_bits(), law.damage(y).to_bits());
+        }
     }
 }

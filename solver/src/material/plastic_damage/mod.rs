@@ -55,8 +55,10 @@ mod slot {
     pub const Y_T: usize = 12;
     /// y_c = b_c ε̃ᵖ_c.
     pub const Y_C: usize = 13;
-    /// D of eq. (24) at the end of the last update (a diagnostic under the consistent
-    /// recovery rule).
+    /// D of eq. (24) at the end of the last update under the `lee_fenves` recovery rule.
+    /// Under the consistent rule, where D is a diagnostic that no update reads, it is not
+    /// formed in the step: NaN for a point with D_t or D_c > 0, else 0, and
+    /// [`PlasticDamage::damage`] forms it from the state when asked.
     pub const DAMAGE: usize = 14;
     /// Fracture energy density g_t κ_t + g_c κ_c (J/m³), Lee & Fenves (1998).
     pub const FRACTURE: usize = 15;
@@ -427,7 +429,11 @@ impl PlasticDamage {
         let start = Internal::of(old);
         let eff = self.elastic.stress(&sub(strain, &start.plastic));
         let (t, c) = self.element_laws(l);
-        let (ct, cc) = (t.law.effective(start.y_t), c.law.effective(start.y_c));
+        // c̄ and D of each law from one exponential where r = 1 (bit for bit the separate
+        // functions, [`SofteningLaw::effective_and_damage`]; the element laws share r with
+        // the material's).
+        let (ct, d_t) = t.law.effective_and_damage(start.y_t);
+        let (cc, d_c) = c.law.effective_and_damage(start.y_c);
         let (beta, limit) = virgin_bound(&self.surface, ct, cc);
         // The bound needs F non-decreasing in σ̂_max (β ≥ 0): any other point (β < 0 or
         // NaN) takes the general path, as it always has.
@@ -437,7 +443,17 @@ impl PlasticDamage {
         }
         let laws = [(&t.law, t.g), (&c.law, c.g)];
         if virgin_bracket(&self.surface, beta, &eff) <= limit {
-            return Some(self.commit(strain, old, new, &start, &start, eff, laws, None));
+            return Some(self.commit(
+                strain,
+                old,
+                new,
+                &start,
+                &start,
+                eff,
+                laws,
+                (d_t, d_c),
+                None,
+            ));
         }
         // F of eq. (25) at the exact values, inside by the bound's margin plus the allowance.
         let values = principal_values(&eff);
@@ -447,7 +463,17 @@ impl PlasticDamage {
         if !inside {
             return None;
         }
-        Some(self.commit(strain, old, new, &start, &start, eff, laws, Some(values)))
+        Some(self.commit(
+            strain,
+            old,
+            new,
+            &start,
+            &start,
+            eff,
+            laws,
+            (d_t, d_c),
+            Some(values),
+        ))
     }
 
     /// [`Self::update`] by the return mapping (no shortcut) at characteristic length `l`.
@@ -480,14 +506,16 @@ impl PlasticDamage {
 
         let eff = self.elastic.stress(&sub(strain, &st.plastic));
         let laws = [(&pb.tension, pb.g_t), (&pb.compression, pb.g_c)];
-        self.commit(strain, old, new, &start, &st, eff, laws, None)
+        let damage = self.damages(st.y_t, st.y_c);
+        self.commit(strain, old, new, &start, &st, eff, laws, damage, None)
     }
 
     /// The new state `new` and the nominal stress of a point that moved from `start`
     /// (state `old`) to `st` with effective stress `eff` = E₀ : (ε − εᵖ) at strain
     /// `strain`, for the element laws `laws` (tension, compression: the softening law and
     /// its dissipation density g of [`ElementLaw`]): the tail of
-    /// [`Self::general_update`] (eqs. 23–24 and the tracked energies). `values`: the
+    /// [`Self::general_update`] (eqs. 23–24 and the tracked energies). `damage`: (D_t, D_c)
+    /// of eq. (24) at `st` ([`Self::damages`], bit for bit). `values`: the
     /// principal values of `eff` when the caller has them ([`principal_values`], the
     /// recovery's own values bit for bit), else `None`.
     #[allow(clippy::too_many_arguments)]
@@ -501,6 +529,7 @@ impl PlasticDamage {
         st: &Internal,
         eff: Voigt,
         laws: [(&SofteningLaw, f64); 2],
+        damage: (f64, f64),
         values: Option<[f64; 3]>,
     ) -> Voigt {
         let [(t, g_t), (c, g_c)] = laws;
@@ -508,7 +537,8 @@ impl PlasticDamage {
         if let Some(v) = values {
             classified = classified.with_values(v);
         }
-        let (sig, d, d_t) = self.nominal_of(&mut classified, st.y_t, st.y_c);
+        let (sig, d) = self.nominal_with(&mut classified, damage);
+        let d_t = damage.0;
         new[slot::PLASTIC..slot::PLASTIC + 6].copy_from_slice(&st.plastic);
         new[slot::STRAIN..slot::STRAIN + 6].copy_from_slice(strain);
         new[slot::Y_T] = st.y_t;
@@ -640,28 +670,63 @@ impl PlasticDamage {
     /// whose D is reported as a diagnostic only. Third: the tensile degradation D_t(y_t).
     #[inline]
     fn nominal(&self, eff: &Voigt, y_t: f64, y_c: f64) -> (Voigt, f64, f64) {
-        self.nominal_of(&mut recovery::Classified::new(eff), y_t, y_c)
+        let damage = self.damages(y_t, y_c);
+        let (sig, d) = self.nominal_with(&mut recovery::Classified::new(eff), damage);
+        (sig, d, damage.0)
     }
 
-    /// [`Self::nominal`] of a [`recovery::Classified`] effective stress.
+    /// (D_t, D_c) = (1 − e^(−d_t ε̃ᵖ_t), 1 − e^(−d_c ε̃ᵖ_c)) of eq. (24) at y_t, y_c.
     #[inline(always)]
-    fn nominal_of(
+    fn damages(&self, y_t: f64, y_c: f64) -> (f64, f64) {
+        (
+            self.constants.tension.damage(y_t),
+            self.constants.compression.damage(y_c),
+        )
+    }
+
+    /// σ and D of [`Self::nominal`] for a [`recovery::Classified`] effective stress and
+    /// `damage` = (D_t, D_c) of [`Self::damages`]. Under the consistent rule D is not
+    /// formed (NaN, or 0 where D_t = D_c = 0: [`slot::DAMAGE`]; [`Self::damage`] forms it
+    /// from the state).
+    #[inline(always)]
+    fn nominal_with(
         &self,
         classified: &mut recovery::Classified,
-        y_t: f64,
-        y_c: f64,
-    ) -> (Voigt, f64, f64) {
-        let dt = self.constants.tension.damage(y_t);
-        let dc = self.constants.compression.damage(y_c);
+        (dt, dc): (f64, f64),
+    ) -> (Voigt, f64) {
         let s0 = self.constants.s0;
-        let d = recovery::lee_fenves_damage(classified, dt, dc, s0);
-        let sig = match self.constants.recovery {
-            Recovery::LeeFenves => scale(classified.stress(), 1.0 - d),
-            Recovery::Consistent => {
-                recovery::consistent_stress_of(classified, dt, dc, s0, self.elastic.poisson)
+        match self.constants.recovery {
+            Recovery::LeeFenves => {
+                let d = recovery::lee_fenves_damage(classified, dt, dc, s0);
+                (scale(classified.stress(), 1.0 - d), d)
             }
-        };
-        (sig, d, dt)
+            Recovery::Consistent => (
+                recovery::consistent_stress_of(classified, dt, dc, s0, self.elastic.poisson),
+                // D_t = D_c = 0 (never yielded): D = 0, what the shortcuts write.
+                if dt == 0.0 && dc == 0.0 {
+                    0.0
+                } else {
+                    f64::NAN
+                },
+            ),
+        }
+    }
+
+    /// D of eq. (24) of a state: D = 1 − (1 − D_c)(1 − s D_t) at the effective stress
+    /// σ̄ = E₀ : (ε − εᵖ) of its last update (its stored strain and plastic strain: the
+    /// σ̄ that update formed, bit for bit), 0 for a point that has never yielded.
+    fn damage_from_state(&self, s: &[f64]) -> f64 {
+        if !self.has_yielded(s) {
+            return 0.0;
+        }
+        let eff = self.effective_stress(&voigt(&s[slot::STRAIN..]), s);
+        let (dt, dc) = self.damages(s[slot::Y_T], s[slot::Y_C]);
+        recovery::lee_fenves_damage(
+            &mut recovery::Classified::new(&eff),
+            dt,
+            dc,
+            self.constants.s0,
+        )
     }
 
     /// Nominal stress at total strain `strain` for an updated state (eqs. 23–24, by the
@@ -689,17 +754,24 @@ impl PlasticDamage {
         )
     }
 
-    /// D of eq. (24) at the end of the last update.
+    /// D of eq. (24) at the end of the last update: stored by the update under the
+    /// `lee_fenves` rule, formed from the state under the consistent one
+    /// ([`slot::DAMAGE`]).
+    #[inline]
     pub fn damage(&self, s: &[f64]) -> f64 {
-        s[slot::DAMAGE]
+        match self.constants.recovery {
+            Recovery::LeeFenves => s[slot::DAMAGE],
+            Recovery::Consistent => self.damage_from_state(s),
+        }
     }
 
-    /// Secant stiffness factor 1 − D (D of eq. (24) at the end of the last update): what
-    /// the one-point element scales its hourglass stiffness by, so that a cracked element
-    /// resists its hourglass modes as its damaged material does (docs/plastic_damage.md §8).
+    /// Secant stiffness factor 1 − D (D of eq. (24) at the end of the last update,
+    /// [`Self::damage`]): what the one-point element scales its hourglass stiffness by, so
+    /// that a cracked element resists its hourglass modes as its damaged material does
+    /// (docs/plastic_damage.md §8).
     #[inline]
     pub fn stiffness_factor(&self, s: &[f64]) -> f64 {
-        1.0 - s[slot::DAMAGE]
+        1.0 - self.damage(s)
     }
 
     /// D_t = 1 − e^(−d_t ε̃ᵖ_t) (eq. 24).

@@ -1084,3 +1084,52 @@ fn the_kept_stress_is_the_recomputed_one() {
         assert_eq!(&s[slot::STRESS..slot::STRESS + 6], &want[..]);
     }
 }
+
+/// Under the consistent rule D of eq. (24) is a diagnostic that the update does not form
+/// ([`slot::DAMAGE`]); [`PlasticDamage::damage`] forms it from the state. Along a damaging
+/// path through tension, unloading and crack closure, in mixed tension–compression states,
+/// it is bit for bit the D that the `lee_fenves` rule forms and stores in its update (the
+/// return mapping works on the effective stress, so both rules reach the same plastic
+/// strain and hardening), and so is the hourglass factor 1 − D.
+#[test]
+fn consistent_damage_formed_from_the_state_is_the_stored_one() {
+    let lf = w10_rules(Regularisation::Plastic, Recovery::LeeFenves);
+    let co = w10_rules(Regularisation::Plastic, Recovery::Consistent);
+    let mut old_lf = vec![0.0; lf.state_len()];
+    lf.init_state(&mut old_lf);
+    let (mut new_lf, mut old_co) = (old_lf.clone(), old_lf.clone());
+    let mut new_co = old_lf.clone();
+    let ctx = PointContext {
+        char_length: 1.0,
+        dt: 1e-4,
+    };
+    let (mut partial, mut cracked) = (0, 0);
+    for k in 0..400 {
+        let t = k as f64 / 400.0;
+        let e = 4e-4 * (std::f64::consts::PI * 3.0 * t).sin();
+        let strain = [e, -0.6 * e, 2e-5 * t, 0.5 * e, -1e-5, -0.1 * e];
+        lf.update(&strain, &old_lf, &mut new_lf, &ctx);
+        co.update(&strain, &old_co, &mut new_co, &ctx);
+        assert_eq!(
+            co.plastic_strain(&new_co),
+            lf.plastic_strain(&new_lf),
+            "step {k}"
+        );
+        let (d_lf, d_co) = (lf.damage(&new_lf), co.damage(&new_co));
+        assert_eq!(d_co.to_bits(), d_lf.to_bits(), "step {k}: {d_co} vs {d_lf}");
+        assert_eq!(
+            co.stiffness_factor(&new_co).to_bits(),
+            lf.stiffness_factor(&new_lf).to_bits()
+        );
+        cracked += usize::from(lf.tensile_damage(&new_lf) > 0.3);
+        // s strictly between s₀ and 1: a mixed state weighted by r(σ̄).
+        let dt = lf.tensile_damage(&new_lf);
+        partial += usize::from(dt > 0.0 && d_lf > 0.01 * dt && d_lf < 0.99 * dt);
+        std::mem::swap(&mut old_lf, &mut new_lf);
+        std::mem::swap(&mut old_co, &mut new_co);
+    }
+    assert!(
+        cracked > 0 && partial > 0,
+        "cracked {cracked}, partial {partial}"
+    );
+}

@@ -442,8 +442,10 @@ impl PlasticDamage {
             return None;
         }
         let laws = [(&t.law, t.g), (&c.law, c.g)];
-        if virgin_bracket(&self.surface, beta, &eff) <= limit {
-            return Some(self.commit(
+        // The state kept, at the new strain: the tail of the general path for an unchanged
+        // state, with the principal values when formed.
+        let mut keep = |values| {
+            self.commit(
                 strain,
                 old,
                 new,
@@ -452,8 +454,11 @@ impl PlasticDamage {
                 eff,
                 laws,
                 (d_t, d_c),
-                None,
-            ));
+                values,
+            )
+        };
+        if virgin_bracket(&self.surface, beta, &eff) <= limit {
+            return Some(keep(None));
         }
         // F of eq. (25) at the exact values, inside by the bound's margin plus the allowance.
         let values = principal_values(&eff);
@@ -463,17 +468,7 @@ impl PlasticDamage {
         if !inside {
             return None;
         }
-        Some(self.commit(
-            strain,
-            old,
-            new,
-            &start,
-            &start,
-            eff,
-            laws,
-            (d_t, d_c),
-            Some(values),
-        ))
+        Some(keep(Some(values)))
     }
 
     /// [`Self::update`] by the return mapping (no shortcut) at characteristic length `l`.

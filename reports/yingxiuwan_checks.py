@@ -364,13 +364,14 @@ def damage_checks(frames: list[tuple[float, Path]], case: dict[str, Any], steps:
             grew_t, grew_c = gain_t > 0.0, gain_c > 0.0
             grew = grew_t | grew_c
             flow = np.any(f["plastic_strain"] != prev["plastic_strain"], axis=1)
-            kappa_t_grew = kt_ > prev["kappa_tension"][:, 0]
-            kappa_c_grew = kc_ > prev["kappa_compression"][:, 0]
-            hardened = (~grew_t | kappa_t_grew | (gain_t <= DAMAGE_ROUNDOFF)) & \
-                       (~grew_c | kappa_c_grew | (gain_c <= DAMAGE_ROUNDOFF))
+            # Per variable: no growth, or κ grew with it (strict), or a growth within the
+            # averages' round-off (DAMAGE_ROUNDOFF).
+            strict_t = ~grew_t | (kt_ > prev["kappa_tension"][:, 0])
+            strict_c = ~grew_c | (kc_ > prev["kappa_compression"][:, 0])
+            hardened = (strict_t | (gain_t <= DAMAGE_ROUNDOFF)) & (strict_c | (gain_c <= DAMAGE_ROUNDOFF))
             bad = grew & ~(flow & hardened)
             growths += int(np.sum(grew))
-            roundoff_only += int(np.sum(grew & flow & hardened & ~((~grew_t | kappa_t_grew) & (~grew_c | kappa_c_grew))))
+            roundoff_only += int(np.sum(grew & flow & hardened & ~(strict_t & strict_c)))
             if np.any(bad) and not first_bad:
                 first_bad = f" (first: element {int(np.argmax(bad))} at t = {t:g} s)"
             bad_growth += int(np.sum(bad))

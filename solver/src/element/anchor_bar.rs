@@ -20,10 +20,10 @@
 //! N(x) = P sinh(λ(L − x))/sinh(λL), λ = √(k_s/EA) (VERIFICATION.md W11).
 //!
 //! Determinism: the perfect-bond pass works on the segments grouped by host element (the
-//! reinforcement mats put many segments in every concrete element) in three parallel
-//! phases whose results do not depend on how rayon splits them
-//! ([`AnchorBars::add_internal_forces`]): every segment's axial force from its host's
-//! nodes, every host's eight nodal forces summed over its segments in segment order, then
+//! reinforcement mats put many segments in every concrete element) in parallel phases
+//! whose results do not depend on how rayon splits them
+//! ([`AnchorBars::add_internal_forces`]): every host's segments' axial forces from its
+//! nodes, read once, and its eight nodal forces summed over them in segment order, then
 //! every host node's sum over its hosts in ascending order — the additions, in their
 //! order, of a serial loop over the hosts. The bond–slip bars follow serially in input
 //! order. So results do not depend on the number of threads.
@@ -31,6 +31,7 @@
 use rayon::prelude::*;
 use serde::Deserialize;
 
+use crate::element::groups::SharedMut;
 use crate::element::host_locate::{HostLocator, HostPoint};
 use crate::mesh::Mesh;
 
@@ -137,8 +138,6 @@ pub struct Segment {
 /// [`AnchorBars::finish`], in host order: see [`HostBlocks`]).
 #[derive(Clone, Debug)]
 struct SegmentKernel {
-    /// Host block (index into [`HostBlocks::host_nodes`]).
-    host: u32,
     /// Segment index in [`AnchorBars::segments`].
     segment: u32,
     g: [f64; 8],
@@ -163,9 +162,8 @@ struct HostBlocks {
     start: Vec<u32>,
     /// Kernel of every segment (the inverse of [`SegmentKernel::segment`]).
     kernel_of: Vec<u32>,
-    /// Axial force, trial plastic strain and N t of every kernel at the last pass.
+    /// Axial force and trial plastic strain of every kernel at the last pass.
     axial: Vec<(f64, f64)>,
-    nt: Vec<[f64; 3]>,
     /// Forces on the eight nodes of every host at the last pass.
     host_force: Vec<[[f64; 3]; 8]>,
     /// Distinct host nodes, ascending, with their entries (host, local node) in ascending
@@ -195,7 +193,6 @@ impl HostBlocks {
             }
             let info = &bars[sg.bar as usize];
             kernels.push(SegmentKernel {
-                host: (blocks.host_nodes.len() - 1) as u32,
                 segment: k,
                 g: sg.g,
                 t: sg.t,
@@ -228,7 +225,6 @@ impl HostBlocks {
         blocks.entry = pairs.iter().map(|&(_, h, a)| (h, a)).collect();
         blocks.sum = vec![[0.0; 3]; blocks.scatter_nodes.len()];
         blocks.axial = vec![(0.0, 0.0); kernels.len()];
-        blocks.nt = vec![[0.0; 3]; kernels.len()];
         blocks.host_force = vec![[[0.0; 3]; 8]; blocks.host_nodes.len()];
         (blocks, kernels)
     }
@@ -555,11 +551,14 @@ impl AnchorBars {
     /// internal-force pass calls this after the element colours). Plastic strains are
     /// trial values until [`AnchorBars::commit`].
     ///
-    /// Perfect bond, in two parallel phases over buffers sized by [`AnchorBars::finish`]:
-    /// 1. every segment k (its own task's entries only): ε = t·(u(q) − u(p))/l, N and the
-    ///    trial εᵖ ([`elastic_plastic`]), and N t;
-    /// 2. every host node n: f_int(n) + Σ_k (N t)_k (N_a(q) − N_a(p)) over its segments in
-    ///    ascending k, then written back to f_int.
+    /// Perfect bond, in parallel phases over buffers sized by [`AnchorBars::finish`]:
+    /// 1. every host element h (its own kernels only): its nodes' displacements read once,
+    ///    then for each of its segments k in ascending order ε = t·(u(q) − u(p))/l, N and
+    ///    the trial εᵖ ([`elastic_plastic`]), and (N t)_k (N_a(q) − N_a(p)) added to the
+    ///    host's eight nodal forces;
+    /// 2. every host node n: f_int(n) + the forces of its hosts in ascending order, then
+    ///    written back to f_int;
+    /// 3. the axial forces and trial plastic strains copied into segment order.
     ///
     /// Each node receives exactly the additions, in exactly the order, of a serial loop
     /// over the segments in input order, however rayon splits the work: the forces are
@@ -567,59 +566,53 @@ impl AnchorBars {
     pub fn add_internal_forces(&mut self, mesh: &Mesh, u: &[[f64; 3]], f_int: &mut [[f64; 3]]) {
         let nseg = self.segments.len();
         let blocks = &mut self.blocks;
-        // 1. Every segment's axial force from its host's nodes (kernels in host order: the
-        // host's nodes are read once from memory, then from the cache).
+        // 1. Every host: its nodes' displacements gathered once, then its segments in
+        // segment order (kernels are sorted by host): each segment's axial force and trial
+        // plastic strain from them, and its N t (N_a(q) − N_a(p)) added to the host's
+        // nodal forces — the additions of a serial loop, in its order.
         {
-            let kernels = &self.kernels;
-            let (plastic, host_nodes) = (&self.plastic[..nseg], &blocks.host_nodes);
-            blocks
-                .axial
-                .par_iter_mut()
-                .zip(blocks.nt.par_iter_mut())
-                .zip(kernels.par_iter())
-                .with_min_len(SEGMENTS_PER_TASK)
-                .for_each(|((axial, nt), s)| {
-                    let nodes = &host_nodes[s.host as usize];
-                    let t = s.t;
-                    let mut du = 0.0;
-                    for a in 0..8 {
-                        let ua = u[nodes[a] as usize];
-                        du += s.g[a] * (t[0] * ua[0] + t[1] * ua[1] + t[2] * ua[2]);
-                    }
-                    du -= s.reference;
-                    let (n, ep) = elastic_plastic(
-                        plastic[s.segment as usize],
-                        s.ea,
-                        s.yield_force,
-                        s.pretension,
-                        du / s.length,
-                    );
-                    *axial = (n, ep);
-                    *nt = [n * t[0], n * t[1], n * t[2]];
-                });
-        }
-        // 2. Every host's nodal forces, its segments in segment order.
-        {
-            let (kernels, start, nt) = (&self.kernels, &blocks.start, &blocks.nt);
+            let (kernels, start, host_nodes) = (&self.kernels, &blocks.start, &blocks.host_nodes);
+            let plastic = &self.plastic[..nseg];
+            let axial = SharedMut(blocks.axial.as_mut_ptr());
             blocks
                 .host_force
                 .par_iter_mut()
                 .enumerate()
                 .with_min_len(HOSTS_PER_TASK)
                 .for_each(|(h, force)| {
+                    let nodes = &host_nodes[h];
+                    let ue: [[f64; 3]; 8] = std::array::from_fn(|a| u[nodes[a] as usize]);
                     let mut f = [[0.0; 3]; 8];
                     for k in start[h] as usize..start[h + 1] as usize {
-                        let (v, g) = (nt[k], &kernels[k].g);
+                        let s = &kernels[k];
+                        let t = s.t;
+                        let mut du = 0.0;
+                        for a in 0..8 {
+                            let ua = ue[a];
+                            du += s.g[a] * (t[0] * ua[0] + t[1] * ua[1] + t[2] * ua[2]);
+                        }
+                        du -= s.reference;
+                        let (n, ep) = elastic_plastic(
+                            plastic[s.segment as usize],
+                            s.ea,
+                            s.yield_force,
+                            s.pretension,
+                            du / s.length,
+                        );
+                        // SAFETY: kernel k belongs to host h alone (start is ascending),
+                        // and every host is visited once.
+                        unsafe { *axial.at(k) = (n, ep) };
+                        let v = [n * t[0], n * t[1], n * t[2]];
                         for a in 0..8 {
                             for d in 0..3 {
-                                f[a][d] += v[d] * g[a];
+                                f[a][d] += v[d] * s.g[a];
                             }
                         }
                     }
                     *force = f;
                 });
         }
-        // 3. Every host node's sum over its hosts in ascending order.
+        // 2. Every host node's sum over its hosts in ascending order.
         {
             let (scatter_nodes, entry_start, entry) =
                 (&blocks.scatter_nodes, &blocks.entry_start, &blocks.entry);
@@ -644,7 +637,7 @@ impl AnchorBars {
                 f_int[n as usize] = *f;
             }
         }
-        // 4. The axial forces and trial plastic strains in segment order.
+        // 3. The axial forces and trial plastic strains in segment order.
         {
             let (kernel_of, axial) = (&blocks.kernel_of, &blocks.axial);
             self.force[..nseg]

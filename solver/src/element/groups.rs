@@ -176,7 +176,7 @@ fn marks_of(material: &Material, states: &PointStates, np: usize, n: usize) -> D
 /// Raw pointer made shareable across threads; every use writes disjoint indices
 /// (guaranteed by the colouring / by element ownership of its state slice).
 #[derive(Clone, Copy)]
-struct SharedMut<T>(*mut T);
+pub(crate) struct SharedMut<T>(pub(crate) *mut T);
 unsafe impl<T> Send for SharedMut<T> {}
 unsafe impl<T> Sync for SharedMut<T> {}
 
@@ -184,7 +184,7 @@ impl<T> SharedMut<T> {
     /// # Safety
     /// `i` must be in bounds and no other thread may access index `i` concurrently.
     #[inline(always)]
-    unsafe fn at(self, i: usize) -> *mut T {
+    pub(crate) unsafe fn at(self, i: usize) -> *mut T {
         self.0.add(i)
     }
 }

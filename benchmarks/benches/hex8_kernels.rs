@@ -88,6 +88,7 @@ fn context() -> PointContext {
     PointContext {
         char_length: 0.25,
         dt: 1e-5,
+        reads_damage: false,
     }
 }
 
@@ -389,7 +390,10 @@ impl LaneWork for OnePointInPlace<'_> {
 /// one-point plastic-damage element that has never yielded, the never-yielded shortcut),
 /// one element whose data stays in L1.
 fn one_point_plastic_damage(c: &mut Criterion) {
-    let ctx = context();
+    let ctx = PointContext {
+        reads_damage: true,
+        ..context()
+    };
     let x = coords(0.0);
     let u = displacements(&x);
     let mat = plastic_damage();

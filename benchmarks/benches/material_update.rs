@@ -17,6 +17,7 @@ fn material_update(c: &mut Criterion) {
     let ctx = PointContext {
         char_length: 0.5,
         dt: 1e-4,
+        reads_damage: false,
     };
     let n = pd.state_len();
     let old = vec![0.0; n];
@@ -99,6 +100,35 @@ fn material_update(c: &mut Criterion) {
         "plastic_damage_cracked_elastic_near_surface_consistent",
         |b| b.iter(|| consistent.update(black_box(&near), black_box(&cracked_c), &mut next, &ctx)),
     );
+    // The mixed point as a one-point element takes it: the update, then 1 − D for the
+    // hourglass stiffness. D formed from the state after the update (the element not
+    // saying it reads D) against D stored by the update from the σ̄ it classified.
+    let reading = PointContext {
+        reads_damage: true,
+        ..ctx
+    };
+    for (name, ctx) in [
+        (
+            "plastic_damage_cracked_elastic_mixed_consistent_factor_formed",
+            ctx,
+        ),
+        (
+            "plastic_damage_cracked_elastic_mixed_consistent_factor_stored",
+            reading,
+        ),
+    ] {
+        g.bench_function(name, |b| {
+            b.iter(|| {
+                let sig = consistent.update(
+                    black_box(&unloading),
+                    black_box(&cracked_c),
+                    &mut next,
+                    &ctx,
+                );
+                (sig, consistent.stiffness_factor(&next))
+            })
+        });
+    }
     g.finish();
 }
 

@@ -106,6 +106,7 @@ fn ctx(l: f64) -> PointContext {
     PointContext {
         char_length: l,
         dt: 1e-4,
+        reads_damage: false,
     }
 }
 

@@ -36,6 +36,7 @@ fn forces(x: &[[f64; 3]; 8], u: &[[f64; 3]; 8], integration: Integration) -> [[f
     let ctx = PointContext {
         char_length: 1.0,
         dt: 1e-4,
+        reads_damage: false,
     };
     let mut f = [[0.0; 3]; 8];
     match integration {

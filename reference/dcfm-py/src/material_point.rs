@@ -71,7 +71,13 @@ pub fn material_point<'py>(
     let mut old = vec![0.0; len];
     let mut new = vec![0.0; len];
     m.init_state(&mut old);
-    let ctx = dcfm::material::PointContext { char_length, dt };
+    // D is read from the state after each update (formed on demand under the consistent
+    // rule: the same value as storing it).
+    let ctx = dcfm::material::PointContext {
+        char_length,
+        dt,
+        reads_damage: false,
+    };
     let mut stress = Vec::with_capacity(6 * k);
     let mut dmg: [Vec<f64>; 5] = Default::default();
     let mut plastic = Vec::with_capacity(6 * k);

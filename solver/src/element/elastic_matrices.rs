@@ -249,6 +249,7 @@ mod tests {
             let ctx = PointContext {
                 char_length: 1.0,
                 dt: 1e-4,
+                reads_damage: false,
             };
             hex8_full::internal_force(&geo, &material, &u, &[], &mut [], &ctx, &mut reference);
             let f = ElementMatrix::new(&geo, &el).apply(&u);
@@ -286,6 +287,7 @@ mod tests {
         let ctx = PointContext {
             char_length: 1.0,
             dt: 1e-4,
+            reads_damage: false,
         };
         for (le, x) in cells.iter().enumerate().take(12) {
             let geo = FullGeometry::new(x).unwrap();

@@ -1290,6 +1290,7 @@ impl<'k> Kernel<'k> {
         let ctx: [PointContext; LANES] = std::array::from_fn(|l| PointContext {
             char_length: self.lengths[first + l],
             dt: dts[l],
+            reads_damage: true,
         });
         let stride = self.stride;
         assert!(
@@ -1346,6 +1347,7 @@ impl<'k> Kernel<'k> {
         let ctx = PointContext {
             char_length: self.lengths[le],
             dt,
+            reads_damage: matches!(self.geometry, GroupGeometry::Uniform(_)),
         };
         let stride = self.stride;
         let range = le * stride..(le + 1) * stride;

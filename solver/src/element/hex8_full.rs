@@ -230,6 +230,7 @@ mod tests {
         let ctx = PointContext {
             char_length: 1.0,
             dt: 1e-4,
+            reads_damage: false,
         };
         let mut f = [[0.0; 3]; 8];
         internal_force(&geo, &mat, &u, &[], &mut [], &ctx, &mut f);

@@ -350,6 +350,7 @@ mod tests {
             let ctx = PointContext {
                 char_length: 0.1 + rng.next(),
                 dt: 1e-4,
+                reads_damage: false,
             };
             // Two steps: from the virgin state, then from the state the first left (some
             // points yielded and damaged) to a larger displacement.

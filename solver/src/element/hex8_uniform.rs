@@ -440,6 +440,7 @@ mod tests {
         let ctx = PointContext {
             char_length: 1.0,
             dt: 1e-4,
+            reads_damage: true,
         };
         let mut f = [[0.0; 3]; 8];
         let s = internal_force(&g, &mat, &u, &[], &mut [], &ctx, &mut f);
@@ -493,6 +494,7 @@ mod tests {
         let ctx = PointContext {
             char_length: 1.0,
             dt: 1e-5,
+            reads_damage: true,
         };
         // Crack the point in uniaxial strain to ε_x = 4e-4.
         let n = mat.state_len();
@@ -558,6 +560,7 @@ mod tests {
         let ctx = PointContext {
             char_length: 0.5,
             dt: 1e-4,
+            reads_damage: true,
         };
         let bits = |v: &[f64]| v.iter().map(|x| x.to_bits()).collect::<Vec<_>>();
         let mut rng = Lcg(0x1a2b_3c4d_0005);

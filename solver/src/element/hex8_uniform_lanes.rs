@@ -260,6 +260,7 @@ mod tests {
                         geo[l].volume,
                     ),
                     dt: 1e-4,
+                    reads_damage: true,
                 });
                 // Nodes: the first 24 of a pool, so that elements share nodes.
                 let mut pool: Vec<[f64; 3]> = (0..40)

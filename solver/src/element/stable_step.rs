@@ -47,6 +47,7 @@ pub fn element_max_eigenvalue(
     let ctx = PointContext {
         char_length: 1.0,
         dt: 0.0,
+        reads_damage: false,
     };
     let uniform = hex8_uniform::UniformGeometry::new(x, material.elastic(), hourglass);
     let full = hex8_full::FullGeometry::new(x);

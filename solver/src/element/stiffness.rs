@@ -124,6 +124,7 @@ mod tests {
         PointContext {
             char_length: 1.0,
             dt: 1e-4,
+            reads_damage: false,
         }
     }
 

@@ -44,6 +44,12 @@ pub struct PointContext {
     pub char_length: f64,
     /// Time step (s), for viscous regularisation.
     pub dt: f64,
+    /// The element reads D of eq. (24) of the new state right after the update (the
+    /// one-point element's hourglass factor, [`Material::stiffness_factor`]): a rule that
+    /// would otherwise leave D to be formed on demand (the plastic-damage consistent
+    /// recovery) stores it, from the effective stress the update has already classified.
+    /// Never changes the stress or the state's other slots.
+    pub reads_damage: bool,
 }
 
 /// A constitutive model, chosen per region. Enum dispatch keeps the element loop

@@ -47,6 +47,7 @@ pub fn single_element_bound() -> f64 {
     let ctx = PointContext {
         char_length: h,
         dt: 0.0,
+        reads_damage: false,
     };
     let mut k = DMatrix::<f64>::zeros(24, 24);
     for col in 0..24 {

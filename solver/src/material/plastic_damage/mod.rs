@@ -57,8 +57,9 @@ mod slot {
     pub const Y_C: usize = 13;
     /// D of eq. (24) at the end of the last update under the `lee_fenves` recovery rule.
     /// Under the consistent rule, where D is a diagnostic that no update reads, it is not
-    /// formed in the step: NaN for a point with D_t or D_c > 0, else 0, and
-    /// [`PlasticDamage::damage`] forms it from the state when asked.
+    /// formed in the step unless the element reads it ([`PointContext::reads_damage`]):
+    /// NaN for a point with D_t or D_c > 0, else 0, and [`PlasticDamage::damage`] forms
+    /// it from the state when asked.
     pub const DAMAGE: usize = 14;
     /// Fracture energy density g_t κ_t + g_c κ_c (J/m³), Lee & Fenves (1998).
     pub const FRACTURE: usize = 15;
@@ -397,10 +398,10 @@ impl PlasticDamage {
             if let Some(sig) = self.virgin_elastic(strain, old, new, l) {
                 return sig;
             }
-        } else if let Some(sig) = self.yielded_elastic(strain, old, new, l) {
+        } else if let Some(sig) = self.yielded_elastic(strain, old, new, l, ctx.reads_damage) {
             return sig;
         }
-        self.general_update(strain, old, new, ctx.dt, l)
+        self.general_update(strain, old, new, ctx.dt, l, ctx.reads_damage)
     }
 
     /// The update of a point that has yielded (y_t or y_c > 0) and whose trial stress is
@@ -425,6 +426,7 @@ impl PlasticDamage {
         old: &[f64],
         new: &mut [f64],
         l: f64,
+        reads_damage: bool,
     ) -> Option<Voigt> {
         let start = Internal::of(old);
         let eff = self.elastic.stress(&sub(strain, &start.plastic));
@@ -455,6 +457,7 @@ impl PlasticDamage {
                 laws,
                 (d_t, d_c),
                 values,
+                reads_damage,
             )
         };
         if virgin_bracket(&self.surface, beta, &eff) <= limit {
@@ -479,6 +482,7 @@ impl PlasticDamage {
         new: &mut [f64],
         dt: f64,
         l: f64,
+        reads_damage: bool,
     ) -> Voigt {
         let pb = self.problem(l);
         let start = Internal::of(old);
@@ -502,7 +506,18 @@ impl PlasticDamage {
         let eff = self.elastic.stress(&sub(strain, &st.plastic));
         let laws = [(&pb.tension, pb.g_t), (&pb.compression, pb.g_c)];
         let damage = self.damages(st.y_t, st.y_c);
-        self.commit(strain, old, new, &start, &st, eff, laws, damage, None)
+        self.commit(
+            strain,
+            old,
+            new,
+            &start,
+            &st,
+            eff,
+            laws,
+            damage,
+            None,
+            reads_damage,
+        )
     }
 
     /// The new state `new` and the nominal stress of a point that moved from `start`
@@ -512,7 +527,8 @@ impl PlasticDamage {
     /// [`Self::general_update`] (eqs. 23–24 and the tracked energies). `damage`: (D_t, D_c)
     /// of eq. (24) at `st` ([`Self::damages`], bit for bit). `values`: the
     /// principal values of `eff` when the caller has them ([`principal_values`], the
-    /// recovery's own values bit for bit), else `None`.
+    /// recovery's own values bit for bit), else `None`. `reads_damage`: store D under
+    /// every rule ([`PointContext::reads_damage`]).
     #[allow(clippy::too_many_arguments)]
     #[inline(always)]
     fn commit(
@@ -526,13 +542,14 @@ impl PlasticDamage {
         laws: [(&SofteningLaw, f64); 2],
         damage: (f64, f64),
         values: Option<[f64; 3]>,
+        reads_damage: bool,
     ) -> Voigt {
         let [(t, g_t), (c, g_c)] = laws;
         let mut classified = recovery::Classified::new(&eff);
         if let Some(v) = values {
             classified = classified.with_values(v);
         }
-        let (sig, d) = self.nominal_with(&mut classified, damage);
+        let (sig, d) = self.nominal_with(&mut classified, damage, reads_damage);
         let d_t = damage.0;
         new[slot::PLASTIC..slot::PLASTIC + 6].copy_from_slice(&st.plastic);
         new[slot::STRAIN..slot::STRAIN + 6].copy_from_slice(strain);
@@ -666,7 +683,7 @@ impl PlasticDamage {
     #[inline]
     fn nominal(&self, eff: &Voigt, y_t: f64, y_c: f64) -> (Voigt, f64, f64) {
         let damage = self.damages(y_t, y_c);
-        let (sig, d) = self.nominal_with(&mut recovery::Classified::new(eff), damage);
+        let (sig, d) = self.nominal_with(&mut recovery::Classified::new(eff), damage, false);
         (sig, d, damage.0)
     }
 
@@ -680,14 +697,16 @@ impl PlasticDamage {
     }
 
     /// σ and D of [`Self::nominal`] for a [`recovery::Classified`] effective stress and
-    /// `damage` = (D_t, D_c) of [`Self::damages`]. Under the consistent rule D is not
-    /// formed (NaN, or 0 where D_t = D_c = 0: [`slot::DAMAGE`]; [`Self::damage`] forms it
-    /// from the state).
+    /// `damage` = (D_t, D_c) of [`Self::damages`]. Under the consistent rule D is formed
+    /// only when `reads_damage` ([`PointContext::reads_damage`]: from the same classified
+    /// σ̄, so the principal values are formed once); else NaN, or 0 where D_t = D_c = 0
+    /// ([`slot::DAMAGE`]; [`Self::damage`] forms it from the state).
     #[inline(always)]
     fn nominal_with(
         &self,
         classified: &mut recovery::Classified,
         (dt, dc): (f64, f64),
+        reads_damage: bool,
     ) -> (Voigt, f64) {
         let s0 = self.constants.s0;
         match self.constants.recovery {
@@ -700,6 +719,8 @@ impl PlasticDamage {
                 // D_t = D_c = 0 (never yielded): D = 0, what the shortcuts write.
                 if dt == 0.0 && dc == 0.0 {
                     0.0
+                } else if reads_damage {
+                    recovery::lee_fenves_damage(classified, dt, dc, s0)
                 } else {
                     f64::NAN
                 },
@@ -756,6 +777,9 @@ impl PlasticDamage {
     pub fn damage(&self, s: &[f64]) -> f64 {
         match self.constants.recovery {
             Recovery::LeeFenves => s[slot::DAMAGE],
+            // Stored where the element asked for it ([`PointContext::reads_damage`]): the
+            // value formed from the state, bit for bit.
+            Recovery::Consistent if !s[slot::DAMAGE].is_nan() => s[slot::DAMAGE],
             Recovery::Consistent => self.damage_from_state(s),
         }
     }

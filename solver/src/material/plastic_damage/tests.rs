@@ -57,6 +57,7 @@ impl<'a> Driver<'a> {
             ctx: PointContext {
                 char_length: l,
                 dt: 1e-4,
+                reads_damage: false,
             },
         }
     }
@@ -295,6 +296,7 @@ fn w10_stiffness_recovery_on_crack_closure() {
     let ctx = PointContext {
         char_length: 1.0,
         dt: 1e-4,
+        reads_damage: false,
     };
     let el = *m.elastic();
     for (sign, expect) in [(1.0, 0.36), (-1.0, 0.90)] {
@@ -432,6 +434,7 @@ fn duvaut_lions_relaxes_halfway_when_dt_equals_viscosity() {
     let ctx = PointContext {
         char_length: 1.0,
         dt: 1e-3,
+        reads_damage: false,
     };
     let old = vec![0.0; slot::LEN];
     let (mut a, mut b) = (vec![0.0; slot::LEN], vec![0.0; slot::LEN]);
@@ -512,6 +515,7 @@ fn large_increments_stay_finite_and_admissible() {
     let ctx = PointContext {
         char_length: 0.5,
         dt: 1e-4,
+        reads_damage: false,
     };
     let mut st = vec![0.0; slot::LEN];
     let path = [
@@ -910,7 +914,14 @@ fn updates_agree(
     let mut a = vec![0.0; m.state_len()];
     let mut b = vec![0.0; m.state_len()];
     let sa = m.update(strain, old, &mut a, ctx);
-    let sb = m.general_update(strain, old, &mut b, ctx.dt, ctx.char_length);
+    let sb = m.general_update(
+        strain,
+        old,
+        &mut b,
+        ctx.dt,
+        ctx.char_length,
+        ctx.reads_damage,
+    );
     assert_eq!(bits(&sa), bits(&sb), "{label}: stress at {strain:?}");
     assert_eq!(bits(&a), bits(&b), "{label}: state at {strain:?}");
     let mut in_place = old.to_vec();
@@ -946,6 +957,7 @@ fn virgin_elastic_shortcut_is_the_general_update_bit_for_bit() {
             let ctx = PointContext {
                 char_length: 0.05 + 2.0 * uniform().abs(),
                 dt: 1e-4,
+                reads_damage: false,
             };
             let (b, moved) = updates_agree(&m, &strain, &old, &ctx, &format!("{reg:?} {rec:?}"));
             moved_seen[usize::from(moved)] = true;
@@ -984,6 +996,7 @@ fn yielded_elastic_shortcut_is_the_general_update_bit_for_bit() {
             let ctx = PointContext {
                 char_length: 0.05 + 2.0 * uniform().abs(),
                 dt: 1e-4,
+                reads_damage: false,
             };
             // A yielded state: one general update from the virgin state past the surface.
             let mut virgin = vec![0.0; m.state_len()];
@@ -991,7 +1004,14 @@ fn yielded_elastic_shortcut_is_the_general_update_bit_for_bit() {
             let size = 8e-4 * uniform().abs();
             let first: Voigt = std::array::from_fn(|_| size * uniform());
             let mut old = vec![0.0; m.state_len()];
-            m.general_update(&first, &virgin, &mut old, ctx.dt, ctx.char_length);
+            m.general_update(
+                &first,
+                &virgin,
+                &mut old,
+                ctx.dt,
+                ctx.char_length,
+                ctx.reads_damage,
+            );
             if old[slot::Y_T] == 0.0 && old[slot::Y_C] == 0.0 {
                 continue;
             }
@@ -1011,7 +1031,7 @@ fn yielded_elastic_shortcut_is_the_general_update_bit_for_bit() {
             });
             let (b, _) = updates_agree(&m, &strain, &old, &ctx, &format!("{reg:?} {rec:?}"));
             let mut c = vec![0.0; m.state_len()];
-            if m.yielded_elastic(&strain, &old, &mut c, ctx.char_length)
+            if m.yielded_elastic(&strain, &old, &mut c, ctx.char_length, ctx.reads_damage)
                 .is_some()
             {
                 assert!(!m.hardening_moved(&old, &b));
@@ -1054,6 +1074,7 @@ fn the_kept_stress_is_the_recomputed_one() {
         let ctx = PointContext {
             char_length: 1.0,
             dt: 1e-4,
+            reads_damage: false,
         };
         // Tension past the peak, unloading, compression through crack closure.
         let path = (0..300).map(|k| {
@@ -1102,14 +1123,40 @@ fn consistent_damage_formed_from_the_state_is_the_stored_one() {
     let ctx = PointContext {
         char_length: 1.0,
         dt: 1e-4,
+        reads_damage: false,
     };
-    let (mut partial, mut cracked) = (0, 0);
+    // The same rule for an element that reads D right after the update (the one-point
+    // hourglass factor): D stored, nothing else changed.
+    let reading = PointContext {
+        reads_damage: true,
+        ..ctx
+    };
+    let (mut old_rd, mut new_rd) = (old_co.clone(), new_co.clone());
+    let (mut partial, mut cracked, mut not_stored) = (0, 0, 0);
     for k in 0..400 {
         let t = k as f64 / 400.0;
         let e = 4e-4 * (std::f64::consts::PI * 3.0 * t).sin();
         let strain = [e, -0.6 * e, 2e-5 * t, 0.5 * e, -1e-5, -0.1 * e];
         lf.update(&strain, &old_lf, &mut new_lf, &ctx);
-        co.update(&strain, &old_co, &mut new_co, &ctx);
+        let sig_co = co.update(&strain, &old_co, &mut new_co, &ctx);
+        let sig_rd = co.update(&strain, &old_rd, &mut new_rd, &reading);
+        assert_eq!(
+            sig_rd.map(f64::to_bits),
+            sig_co.map(f64::to_bits),
+            "step {k}"
+        );
+        for (i, (a, b)) in new_rd.iter().zip(&new_co).enumerate() {
+            if i != slot::DAMAGE {
+                assert_eq!(a.to_bits(), b.to_bits(), "step {k}, slot {i}");
+            }
+        }
+        assert!(!new_rd[slot::DAMAGE].is_nan(), "step {k}: D not stored");
+        assert_eq!(
+            new_rd[slot::DAMAGE].to_bits(),
+            lf.damage(&new_lf).to_bits(),
+            "step {k}"
+        );
+        not_stored += usize::from(new_co[slot::DAMAGE].is_nan());
         assert_eq!(
             co.plastic_strain(&new_co),
             lf.plastic_strain(&new_lf),
@@ -1127,9 +1174,10 @@ fn consistent_damage_formed_from_the_state_is_the_stored_one() {
         partial += usize::from(dt > 0.0 && d_lf > 0.01 * dt && d_lf < 0.99 * dt);
         std::mem::swap(&mut old_lf, &mut new_lf);
         std::mem::swap(&mut old_co, &mut new_co);
+        std::mem::swap(&mut old_rd, &mut new_rd);
     }
     assert!(
-        cracked > 0 && partial > 0,
-        "cracked {cracked}, partial {partial}"
+        cracked > 0 && partial > 0 && not_stored > 0,
+        "cracked {cracked}, partial {partial}, D left to be formed {not_stored}"
     );
 }

@@ -771,8 +771,8 @@ impl PlasticDamage {
     }
 
     /// D of eq. (24) at the end of the last update: stored by the update under the
-    /// `lee_fenves` rule, formed from the state under the consistent one
-    /// ([`slot::DAMAGE`]).
+    /// `lee_fenves` rule, and under the consistent one where the element reads it
+    /// ([`PointContext::reads_damage`]); else formed from the state ([`slot::DAMAGE`]).
     #[inline]
     pub fn damage(&self, s: &[f64]) -> f64 {
         match self.constants.recovery {

@@ -40,6 +40,7 @@ use rayon::prelude::*;
 use crate::contact::ContactStepInput;
 use crate::element::groups::{add_internal_forces, ForceSettings};
 use crate::error::{DcfmError, Result};
+use crate::load::LoadsByNode;
 use crate::model::Model;
 use crate::stage::energy::{Energies, EnergyParts};
 use crate::stage::subcycling::{Subcycling, SubcyclingSummary};
@@ -88,7 +89,8 @@ pub struct Simulation {
     f_int: Vec<[f64; 3]>,
     f_damp: Vec<[f64; 3]>,
     f_ext: Vec<[f64; 3]>,
-    loaded_nodes: Vec<u32>,
+    /// The nodal loads gathered per node (their node sets as at construction).
+    loads_by_node: LoadsByNode,
     /// Contact forces Rⁿ (zero except at the nodes listed in `contact_nodes`).
     r: Vec<[f64; 3]>,
     contact_nodes: Vec<u32>,
@@ -160,13 +162,7 @@ impl Simulation {
                 }
             }
         }
-        let mut loaded_nodes: Vec<u32> = model
-            .nodal_loads
-            .iter()
-            .flat_map(|l| l.nodes.iter().copied())
-            .collect();
-        loaded_nodes.sort_unstable();
-        loaded_nodes.dedup();
+        let loads_by_node = LoadsByNode::new(&model.nodal_loads);
         let kinetic = kinetic_energy(&v, &model.mass);
         let n_chunks = n.div_ceil(NODE_CHUNK);
         let mut node_kind = model.constraints.constrained.clone();
@@ -203,7 +199,7 @@ impl Simulation {
             f_int: vec![[0.0; 3]; n],
             f_damp: vec![[0.0; 3]; n],
             f_ext: vec![[0.0; 3]; n],
-            loaded_nodes,
+            loads_by_node,
             r: vec![[0.0; 3]; n],
             contact_nodes: Vec::new(),
             contact_corrected: Vec::new(),
@@ -250,7 +246,7 @@ impl Simulation {
             self.dt,
             safety,
             max_level,
-            &self.loaded_nodes,
+            self.loads_by_node.nodes(),
         )?;
         s.u_end = self.u.clone();
         self.subcycling = Some(s);
@@ -353,17 +349,8 @@ impl Simulation {
 
     /// External nodal loads Fⁿ into `f_ext`.
     fn external_forces(&mut self) {
-        for &i in &self.loaded_nodes {
-            self.f_ext[i as usize] = [0.0; 3];
-        }
-        for load in &self.model.nodal_loads {
-            let h = load.history.value(self.time);
-            for &i in &load.nodes {
-                for d in 0..3 {
-                    self.f_ext[i as usize][d] += load.force[d] * h;
-                }
-            }
-        }
+        self.loads_by_node
+            .apply(&self.model.nodal_loads, self.time, &mut self.f_ext);
     }
 
     /// One step tⁿ → tⁿ⁺¹, in this order:
@@ -594,7 +581,8 @@ impl Simulation {
         // summed per chunk and the chunks in order (the same sums on any thread count).
         let nodes = &self.contact_nodes;
         let corrected = &mut self.contact_corrected;
-        corrected.clear();
+        // Every entry is written below: only the length is set (no fill when it is the
+        // last step's).
         corrected.resize(nodes.len(), ([0.0; 3], [0.0; 3]));
         let fix_parts = &mut self.contact_fix_parts;
         fix_parts.clear();

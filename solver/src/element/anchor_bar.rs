@@ -301,6 +301,10 @@ pub struct AnchorBars {
     /// bars' segments), committed and trial.
     plastic: Vec<f64>,
     plastic_trial: Vec<f64>,
+    /// `plastic_trial` holds the trial strains of a force pass not yet committed (every
+    /// entry: the pass writes them all), so that [`AnchorBars::commit`] takes them by a
+    /// swap of the two buffers, without a copy.
+    trial_pending: bool,
     /// Axial force of every segment at the last internal-force pass (N).
     pub force: Vec<f64>,
     /// Packed segment data in host order and the host blocks of the force pass.
@@ -695,6 +699,7 @@ impl AnchorBars {
                 }
             }
         }
+        self.trial_pending = true;
     }
 
     /// End of a step: commit the plastic strains and advance the bond–slip bars' own nodes
@@ -702,8 +707,12 @@ impl AnchorBars {
     /// velocity increment `dt_v` (½(Δt⁻ + h), Δt for full steps), then displacement
     /// increment `h` × velocity (stage::dynamic, variable step).
     pub fn commit(&mut self, dt_v: f64, h: f64, alpha: f64) {
-        std::mem::swap(&mut self.plastic, &mut self.plastic_trial);
-        self.plastic_trial.copy_from_slice(&self.plastic);
+        // The pass wrote every trial strain: the buffers change roles, and the next pass
+        // overwrites the old committed strains left in `plastic_trial`. Without a pass
+        // since the last commit there is nothing to take.
+        if std::mem::take(&mut self.trial_pending) {
+            std::mem::swap(&mut self.plastic, &mut self.plastic_trial);
+        }
         for b in self.bond_slip.iter_mut() {
             for i in 0..b.w.len() {
                 // The head load pulls node 0 out (against t).
@@ -914,6 +923,7 @@ impl AnchorBars {
         let k = self.plastic.len();
         self.plastic.copy_from_slice(&s[..k]);
         self.plastic_trial.copy_from_slice(&s[..k]);
+        self.trial_pending = false;
         let mut at = k;
         for b in self.bond_slip.iter_mut() {
             let n = b.w.len();
@@ -1012,6 +1022,95 @@ mod tests {
             bond_stiffness: None,
             segment_length: None,
         }
+    }
+
+    /// The commit takes the trial strains of the last force pass (perfect-bond and
+    /// bond–slip segments alike) and nothing else: a second commit without a pass changes
+    /// nothing, and a pass reads the committed strains, not the trial ones of an earlier
+    /// pass (two passes at one displacement without a commit between give the same
+    /// forces and trial strains) — along a path that yields, unloads and yields again.
+    #[test]
+    fn commit_takes_the_last_pass_trial_strains() {
+        let mesh = BoxMeshSpec::single("b", [0.0; 3], [4.0, 4.0, 4.0], [4, 4, 4])
+            .build("test")
+            .unwrap();
+        let locator = HostLocator::new(&mesh, |_| true);
+        let mut bars = AnchorBars::default();
+        for (k, (ends, bond)) in [
+            ([[0.3, 0.4, 0.5], [3.6, 3.1, 3.4]], None),
+            ([[0.2, 3.7, 0.6], [3.5, 0.3, 3.3]], Some(2e8)),
+        ]
+        .into_iter()
+        .enumerate()
+        {
+            let names = BarNames {
+                name: format!("b{k}"),
+                group: "g".into(),
+            };
+            let spec = SteelSpec {
+                bond_stiffness: bond,
+                ..steel(0.0)
+            };
+            bars.add_bar(&mesh, &locator, names, ends, &spec).unwrap();
+        }
+        bars.finish();
+        assert!(!bars.bond_slip.is_empty() && !bars.segments.is_empty());
+        let n = bars.plastic.len();
+        let zero = vec![[0.0; 3]; mesh.n_nodes()];
+        bars.install_at(&mesh, &zero);
+        let field = |a: f64| -> Vec<[f64; 3]> {
+            mesh.coords
+                .iter()
+                .map(|x| [a * x[0], a * (x[1] + 0.3 * x[2]), a * x[2]])
+                .collect()
+        };
+        let committed = |b: &AnchorBars| b.state()[..n].to_vec();
+        let mut yielded = [false; 2];
+        for (step, a) in [4e-3, 4e-3, 0.0, -4e-3, 1e-3].into_iter().enumerate() {
+            let u = field(a);
+            // The bond–slip bar's own nodes stretched along it, beyond yield at |a| = 4e-3.
+            for b in bars.bond_slip.iter_mut() {
+                for (i, w) in b.w.iter_mut().enumerate() {
+                    *w = 2.0 * a * i as f64;
+                }
+            }
+            let before = committed(&bars);
+            let mut f1 = vec![[0.0; 3]; mesh.n_nodes()];
+            bars.add_internal_forces(&mesh, &u, &mut f1);
+            let (force1, trial1) = (bars.force.clone(), bars.plastic_trial.clone());
+            let mut f2 = vec![[0.0; 3]; mesh.n_nodes()];
+            bars.add_internal_forces(&mesh, &u, &mut f2);
+            assert!(f1 == f2, "step {step}: a second pass reads other strains");
+            assert!(
+                bars.force == force1 && bars.plastic_trial == trial1,
+                "step {step}"
+            );
+            assert_eq!(
+                committed(&bars),
+                before,
+                "step {step}: a pass commits nothing"
+            );
+            bars.commit(0.0, 0.0, 0.0);
+            assert_eq!(
+                committed(&bars),
+                trial1,
+                "step {step}: the pass's trial strains"
+            );
+            bars.commit(0.0, 0.0, 0.0);
+            assert_eq!(
+                committed(&bars),
+                trial1,
+                "step {step}: a commit without a pass"
+            );
+            let first = bars.bond_slip[0].first;
+            yielded[0] |= trial1[..first].iter().any(|&e| e != 0.0);
+            yielded[1] |= trial1[first..].iter().any(|&e| e != 0.0);
+        }
+        assert_eq!(
+            yielded,
+            [true, true],
+            "the path yields segments of both kinds"
+        );
     }
 
     /// The parallel pass (on a two-thread pool, several tasks per phase) gives, bit for

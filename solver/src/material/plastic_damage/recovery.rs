@@ -232,11 +232,32 @@ pub fn consistent_stress_of(c: &mut Classified, dt: f64, dc: f64, s0: f64, nu: f
 }
 
 /// The tension set P = first `m` directions whose stresses have the assumed signs; when
-/// rounding leaves none exactly consistent, the least violating one.
+/// rounding leaves none exactly consistent, the least violating one. Each candidate's
+/// stresses are [`principal_stresses`]`(p, m, …)` bit for bit: the t_i, the two values
+/// k_i can take and the quotients t_i/k, 1/k are formed once for the four sets (the same
+/// operations on the same operands), not once per set.
 fn select(p: &[f64; 3], dc: f64, a: f64, phi: f64, nu: f64) -> (usize, [f64; 3]) {
+    let tr = p[0] + p[1] + p[2];
+    let t = [
+        (1.0 - dc) * ((1.0 + nu) * p[0] - nu * tr),
+        (1.0 - dc) * ((1.0 + nu) * p[1] - nu * tr),
+        (1.0 - dc) * ((1.0 + nu) * p[2] - nu * tr),
+    ];
+    // k_i of a direction outside P (index 0) and in P (index 1).
+    let k_open = a * (1.0 + nu);
+    let k = [k_open + 0.0, k_open + phi];
+    let inv = [1.0 / k[0], 1.0 / k[1]];
+    let quotient = [t.map(|ti| ti / k[0]), t.map(|ti| ti / k[1])];
     let mut best = (0, [0.0; 3], f64::INFINITY);
     for m in 0..=3 {
-        let s = principal_stresses(p, m, dc, a, phi, nu);
+        let in_p = |i: usize| usize::from(i < m);
+        let (mut num, mut inv_sum) = (0.0, 0.0);
+        for i in 0..3 {
+            num += quotient[in_p(i)][i];
+            inv_sum += inv[in_p(i)];
+        }
+        let sum = num / (1.0 - a * nu * inv_sum);
+        let s: [f64; 3] = std::array::from_fn(|i| (t[i] + a * nu * sum) / k[in_p(i)]);
         let mut violation = 0.0f64;
         for (i, v) in s.iter().enumerate() {
             violation += if i < m { (-v).max(0.0) } else { v.max(0.0) };
@@ -427,5 +448,61 @@ mod tests {
         let (w1, w2) = (loop_work(1000), loop_work(4000));
         assert!(w2.abs() < 1e-6 * gross, "{w1} {w2}");
         assert!(w2.abs() <= w1.abs() / 4.0 + 1e-9 * gross, "{w1} {w2}");
+    }
+
+    /// The selection as it was written before the shared quotients: each candidate set's
+    /// stresses from [`principal_stresses`] on its own.
+    fn select_per_set(p: &[f64; 3], dc: f64, a: f64, phi: f64, nu: f64) -> (usize, [f64; 3]) {
+        let mut best = (0, [0.0; 3], f64::INFINITY);
+        for m in 0..=3 {
+            let s = principal_stresses(p, m, dc, a, phi, nu);
+            let mut violation = 0.0f64;
+            for (i, v) in s.iter().enumerate() {
+                violation += if i < m { (-v).max(0.0) } else { v.max(0.0) };
+            }
+            if violation == 0.0 {
+                return (m, s);
+            }
+            if violation < best.2 {
+                best = (m, s, violation);
+            }
+        }
+        (best.0, best.1)
+    }
+
+    /// `select` gives the set and the stresses of the per-set evaluation bit for bit, over
+    /// every sign pattern of the principal values, damage from none to full, exact zeros
+    /// and near-double roots.
+    #[test]
+    fn shared_quotients_select_the_per_set_result_bit_for_bit() {
+        let mut rng = crate::test_random::Lcg(0x005e_1ec7_0b17);
+        let mut sets = [0usize; 4];
+        for draw in 0..20_000 {
+            let mag = 10f64.powf(2.0 + 6.0 * rng.next());
+            let mut p: [f64; 3] = std::array::from_fn(|_| mag * rng.sym());
+            match draw % 5 {
+                0 => p[1] = p[0] * (1.0 + 1e-13 * rng.sym()),
+                1 => p[2] = 0.0,
+                _ => {}
+            }
+            p.sort_by(|x, y| y.total_cmp(x));
+            let dt = [rng.next(), 1.0 - 1e-12, 0.999 * rng.next().powi(8)][draw % 3];
+            let dc = if draw % 4 == 0 { 0.0 } else { 0.9 * rng.next() };
+            let s0 = if draw % 7 == 0 { 0.0 } else { rng.next() };
+            let nu = 0.1 + 0.3 * rng.next();
+            let a = 1.0 / (1.0 - s0 * dt);
+            let phi = 1.0 / (1.0 - dt) - a;
+            let (m, s) = select(&p, dc, a, phi, nu);
+            let (m_ref, s_ref) = select_per_set(&p, dc, a, phi, nu);
+            assert_eq!(m, m_ref, "draw {draw}: {p:?}");
+            assert_eq!(
+                s.map(f64::to_bits),
+                s_ref.map(f64::to_bits),
+                "draw {draw}: {p:?}"
+            );
+            sets[m] += 1;
+        }
+        // Every tension set is chosen in some draw.
+        assert!(sets.iter().all(|&n| n > 100), "{sets:?}");
     }
 }

@@ -37,11 +37,12 @@
 
 use rayon::prelude::*;
 
-use crate::contact::ContactStepInput;
+use crate::contact::{ContactStepInput, ContactSystem};
 use crate::element::groups::{add_internal_forces, ForceSettings};
 use crate::error::{DcfmError, Result};
 use crate::load::LoadsByNode;
 use crate::model::Model;
+use crate::stage::contact_overlap::{ContactPredictor, PredictedNode};
 use crate::stage::energy::{Energies, EnergyParts};
 use crate::stage::subcycling::{Subcycling, SubcyclingSummary};
 
@@ -64,6 +65,49 @@ struct ChunkResult {
     nonfinite: bool,
 }
 
+impl ChunkResult {
+    /// The velocity check of node `i` (largest velocity component `vm`, `nonfinite`
+    /// motion), the nodes of a chunk in order: the first non-finite node, else the
+    /// fastest.
+    #[inline(always)]
+    fn check(&mut self, i: usize, vm: f64, nonfinite: bool) {
+        if nonfinite {
+            if !self.nonfinite {
+                self.vmax_node = i as u32;
+            }
+            self.nonfinite = true;
+        } else if vm > self.vmax && !self.nonfinite {
+            self.vmax = vm;
+            self.vmax_node = i as u32;
+        }
+    }
+
+    /// Add the result `node` of node `i` alone (formed from a default result): the same
+    /// sums and check as forming it here. Its parts are 0 + p, and adding 0 + p to a sum
+    /// is adding p (a sum that starts at +0 never becomes −0, and the parts a node does
+    /// not touch add +0); its check holds the node's own velocity, or 0 for a node at
+    /// rest, which a check already at or above 0 ignores either way.
+    #[inline(always)]
+    fn merge(&mut self, i: usize, node: &ChunkResult) {
+        for (s, x) in self.parts.iter_mut().zip(node.parts) {
+            *s += x;
+        }
+        self.check(i, node.vmax, node.nonfinite);
+    }
+}
+
+/// Contact forces Rⁿ of `contact` for `input` into `r` (eqs. 5–22); the wall time it took
+/// (s), for the benchmarks.
+fn contact_forces(
+    contact: &mut ContactSystem,
+    input: &ContactStepInput,
+    r: &mut [[f64; 3]],
+) -> Result<f64> {
+    let started = std::time::Instant::now();
+    contact.compute(input, r)?;
+    Ok(started.elapsed().as_secs_f64())
+}
+
 /// A model in motion: displacements Uⁿ, half-step velocities V^{n−½}, energies and the
 /// scratch buffers of the step (allocated once).
 pub struct Simulation {
@@ -82,7 +126,8 @@ pub struct Simulation {
     pub a: Vec<[f64; 3]>,
     /// Energies at the last completed step.
     pub energies: Energies,
-    /// Wall time spent in the contact phase (stage 4) so far (s), for the benchmarks.
+    /// Wall time spent in the contact phase (stage 4) so far (s), for the benchmarks (beside
+    /// the node pass, [`Simulation::set_contact_beside_node_pass`], the phase's own time).
     pub contact_seconds: f64,
     u_next: Vec<[f64; 3]>,
     v_next: Vec<[f64; 3]>,
@@ -125,6 +170,11 @@ pub struct Simulation {
     on_grid: bool,
     /// Multi-time-step integration, when enabled.
     subcycling: Option<Subcycling>,
+    /// The contact set's predictor, formed before the node pass (module
+    /// `contact_overlap`); built at the first step with contact.
+    contact_predictor: Option<ContactPredictor<ChunkResult>>,
+    /// Solve contact beside the node pass ([`Simulation::set_contact_beside_node_pass`]).
+    contact_beside: bool,
 }
 
 impl Simulation {
@@ -224,8 +274,19 @@ impl Simulation {
             last_step: dt,
             on_grid: true,
             subcycling: None,
+            contact_predictor: None,
+            contact_beside: true,
             model,
         }
+    }
+
+    /// Whether the contact solve runs beside the node pass (module `contact_overlap`; on
+    /// by default, and always off with subcycling). Off: every node's predictor in the
+    /// node pass, then the contact solve, as the step was first written — the same step
+    /// bit for bit (`solver/tests/contact_beside_node_pass.rs`); for that comparison and
+    /// for benchmarks.
+    pub fn set_contact_beside_node_pass(&mut self, on: bool) {
+        self.contact_beside = on;
     }
 
     /// Whether steps shorter than Δt are taken exactly ([`Simulation::step_to`]): not with
@@ -358,7 +419,9 @@ impl Simulation {
     /// 2. external loads Fⁿ and gravity;
     /// 3. predictor V̄^{n+½}, Ū^{n+1} for every node as if no contact existed (eq. 4), with
     ///    fixed and prescribed DOFs imposed;
-    /// 4. contact forces Rⁿ from the predictor (eqs. 5–22) — none without interfaces;
+    /// 4. contact forces Rⁿ from the predictor (eqs. 5–22) — none without interfaces; it
+    ///    reads the predictor of the contact set alone, which is formed first, so that
+    ///    the serial contact solve runs beside the rest of step 3 (`contact_overlap`);
     /// 5. correction U^{n+1} = Ū + Δt² M⁻¹ R, V^{n+½} = V̄ + Δt M⁻¹ R (eqs. 2–3);
     /// 6. energies at tⁿ, instability check, commit of material states.
     pub fn step(&mut self) -> Result<()> {
@@ -462,119 +525,192 @@ impl Simulation {
         let n = self.u.len();
         let boundaries = self.model.boundaries.as_ref();
         let boundary_slot = &self.boundary_slot;
-        self.u_next
-            .par_chunks_mut(NODE_CHUNK)
-            .zip(self.v_next.par_chunks_mut(NODE_CHUNK))
-            .zip(self.a.par_chunks_mut(NODE_CHUNK))
-            .zip(self.chunks.par_iter_mut())
-            .enumerate()
-            .for_each(|(ci, (((un, vn), an), res))| {
-                let mut out = ChunkResult::default();
-                for (k, ((ui, vi), ai)) in un.iter_mut().zip(vn.iter_mut()).zip(an).enumerate() {
-                    let i = ci * NODE_CHUNK + k;
-                    let kind = ctx.node_kind[i];
-                    let level = levels.map_or(0, |l| l[i]);
-                    let mut step_v = dt_v;
-                    if level > 0 {
-                        // A coarse node (free by construction): its own step when due, else
-                        // nothing here (interpolated after the pass).
-                        if !crate::element::groups::Due::at(step, level) {
-                            continue;
-                        }
-                        let c = &level_ctx[level as usize];
-                        c.predict_free(i, ui, vi, &mut out.parts);
-                        step_v = c.dt_v;
-                    } else if kind == 0 {
-                        ctx.predict_free(i, ui, vi, &mut out.parts);
-                    } else if kind & BOUNDARY_NODE != 0 {
-                        // A boundary node: the leapfrog with the boundary forces and the
-                        // centred dashpot (a contact force is added in step 5).
-                        let bs = boundaries.expect("boundary nodes come with boundaries");
-                        let b = boundary_slot[i] as usize;
-                        let (u_b, v_b, p) = ctx.boundary_node(i, bs, b, &[0.0; 3]);
-                        *ui = u_b;
-                        *vi = v_b;
-                        for (s, x) in out.parts.iter_mut().zip(p) {
-                            *s += x;
-                        }
-                        step_v = dt;
-                    } else {
-                        ctx.predict(i, ui, vi);
-                        let p = ctx.energy_parts(i, vi, &[0.0; 3]);
-                        for (s, x) in out.parts.iter_mut().zip(p) {
-                            *s += x;
-                        }
-                    }
-                    // Acceleration (V^{n+½} − V^{n−½})/Δt of the uncorrected motion;
-                    // recomputed at the contact nodes after the correction.
-                    let vo = &ctx.v[i];
-                    *ai = std::array::from_fn(|d| (vi[d] - vo[d]) / step_v);
-                    let vm = vi[0].abs().max(vi[1].abs()).max(vi[2].abs());
-                    if !vm.is_finite() || !ui.iter().all(|x| x.is_finite()) {
-                        if !out.nonfinite {
-                            out.vmax_node = i as u32;
-                        }
-                        out.nonfinite = true;
-                    } else if vm > out.vmax && !out.nonfinite {
-                        out.vmax = vm;
-                        out.vmax_node = i as u32;
-                    }
+        // The predictor of node i: its Ū^{n+1}, V̄^{n+½} and acceleration, its energy parts
+        // and velocity check added to `out` (the node pass's chunk result).
+        let node = |i: usize,
+                    ui: &mut [f64; 3],
+                    vi: &mut [f64; 3],
+                    ai: &mut [f64; 3],
+                    out: &mut ChunkResult| {
+            let kind = ctx.node_kind[i];
+            let level = levels.map_or(0, |l| l[i]);
+            let mut step_v = dt_v;
+            if level > 0 {
+                // A coarse node (free by construction): its own step when due, else
+                // nothing here (interpolated after the pass).
+                if !crate::element::groups::Due::at(step, level) {
+                    return;
                 }
-                *res = out;
-            });
-        debug_assert_eq!(n, self.u_next.len());
-        // 3a. Coarse nodes: keep U^{n+2^L} of those that updated, and set every coarse
-        // node's displacement at t^{n+1} by linear interpolation (serial, fixed order);
-        // those that did not update keep their velocity and count ½ M |V|² as kinetic.
-        let mut sub_kinetic = 0.0;
-        if let Some(s) = self.subcycling.as_mut() {
-            let next = step + 1;
-            for &i in &s.coarse_nodes {
-                let i = i as usize;
-                let l = s.node_level[i];
-                if crate::element::groups::Due::at(step, l) {
-                    s.u_end[i] = self.u_next[i];
-                } else {
-                    let v = self.v[i];
-                    self.v_next[i] = v;
-                    sub_kinetic +=
-                        0.5 * self.model.mass[i] * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+                let c = &level_ctx[level as usize];
+                c.predict_free(i, ui, vi, &mut out.parts);
+                step_v = c.dt_v;
+            } else if kind == 0 {
+                ctx.predict_free(i, ui, vi, &mut out.parts);
+            } else if kind & BOUNDARY_NODE != 0 {
+                // A boundary node: the leapfrog with the boundary forces and the
+                // centred dashpot (a contact force is added in step 5).
+                let bs = boundaries.expect("boundary nodes come with boundaries");
+                let b = boundary_slot[i] as usize;
+                let (u_b, v_b, p) = ctx.boundary_node(i, bs, b, &[0.0; 3]);
+                *ui = u_b;
+                *vi = v_b;
+                for (s, x) in out.parts.iter_mut().zip(p) {
+                    *s += x;
                 }
-                let period = 1u64 << l;
-                let left = (period - next % period) % period;
-                self.u_next[i] = if left == 0 {
-                    s.u_end[i]
-                } else {
-                    let tau = left as f64 * dt;
-                    let (ue, v) = (s.u_end[i], self.v_next[i]);
-                    std::array::from_fn(|d| ue[d] - tau * v[d])
-                };
+                step_v = dt;
+            } else {
+                ctx.predict(i, ui, vi);
+                let p = ctx.energy_parts(i, vi, &[0.0; 3]);
+                for (s, x) in out.parts.iter_mut().zip(p) {
+                    *s += x;
+                }
             }
+            // Acceleration (V^{n+½} − V^{n−½})/Δt of the uncorrected motion;
+            // recomputed at the contact nodes after the correction.
+            let vo = &ctx.v[i];
+            *ai = std::array::from_fn(|d| (vi[d] - vo[d]) / step_v);
+            let vm = vi[0].abs().max(vi[1].abs()).max(vi[2].abs());
+            out.check(i, vm, !vm.is_finite() || !ui.iter().all(|x| x.is_finite()));
+        };
+        // With contact and no subcycling, the contact set's predictor first (module
+        // `contact_overlap`), so that the contact solve can run beside the node pass.
+        let contact = self.model.contact.as_mut().filter(|c| !c.is_empty());
+        if contact.is_some() && self.contact_predictor.is_none() {
+            let c = contact.as_deref().expect("checked");
+            self.contact_predictor = Some(ContactPredictor::new(c, n));
         }
+        let beside = self.contact_beside && contact.is_some() && levels.is_none();
+        let predictor = self.contact_predictor.as_mut().filter(|_| beside);
+        let predicted = match predictor {
+            Some(p) => {
+                p.predicted
+                    .par_chunks_mut(CONTACT_CHUNK)
+                    .zip(p.nodes.par_chunks(CONTACT_CHUNK))
+                    .for_each(|(out, ids)| {
+                        for (o, &i) in out.iter_mut().zip(ids) {
+                            let mut result = ChunkResult::default();
+                            let (mut u, mut v, mut a) = ([0.0; 3], [0.0; 3], [0.0; 3]);
+                            node(i as usize, &mut u, &mut v, &mut a, &mut result);
+                            *o = PredictedNode { u, v, a, result };
+                        }
+                    });
+                p.publish();
+                Some(&*p)
+            }
+            None => None,
+        };
+        // 3. The node pass (the contact set's nodes taken from the pre-pass, at their
+        // place in the chunk sums).
+        let (u_next, v_next, accel, chunks) = (
+            &mut self.u_next,
+            &mut self.v_next,
+            &mut self.a,
+            &mut self.chunks,
+        );
+        let mut node_pass = || {
+            u_next
+                .par_chunks_mut(NODE_CHUNK)
+                .zip(v_next.par_chunks_mut(NODE_CHUNK))
+                .zip(accel.par_chunks_mut(NODE_CHUNK))
+                .zip(chunks.par_iter_mut())
+                .enumerate()
+                .for_each(|(ci, (((un, vn), an), res))| {
+                    let mut out = ChunkResult::default();
+                    for (k, ((ui, vi), ai)) in un.iter_mut().zip(vn.iter_mut()).zip(an).enumerate()
+                    {
+                        let i = ci * NODE_CHUNK + k;
+                        if let Some(p) = predicted {
+                            let j = p.slot[i];
+                            if j != u32::MAX {
+                                let q = &p.predicted[j as usize];
+                                (*ui, *vi, *ai) = (q.u, q.v, q.a);
+                                out.merge(i, &q.result);
+                                continue;
+                            }
+                        }
+                        node(i, ui, vi, ai, &mut out);
+                    }
+                    *res = out;
+                });
+        };
         // 4. Contact forces Rⁿ from the predictor (eqs. 5–22).
         for &i in &self.contact_nodes {
             self.r[i as usize] = [0.0; 3];
         }
         self.contact_nodes.clear();
-        if let Some(contact) = self.model.contact.as_mut() {
-            let started = std::time::Instant::now();
-            // The contact forces enter U^{n+1} through h·½(Δt⁻ + h) M⁻¹ R (Δt² M⁻¹ R
-            // for full steps): the contact solver's Δt² is that product.
-            let dt_contact = if ctx.uniform { dt } else { (h * dt_v).sqrt() };
-            let input = ContactStepInput {
-                step: self.step,
-                time: t,
-                dt: dt_contact,
-                inv_mass: &self.model.inv_mass,
-                coords: &self.model.mesh.coords,
-                u_old: &self.u,
-                u_pred: &self.u_next,
-                v_pred: &self.v_next,
-            };
-            contact.compute(&input, &mut self.r)?;
+        // The contact forces enter U^{n+1} through h·½(Δt⁻ + h) M⁻¹ R (Δt² M⁻¹ R for full
+        // steps): the contact solver's Δt² is that product.
+        let dt_contact = if ctx.uniform { dt } else { (h * dt_v).sqrt() };
+        let (r, coords) = (&mut self.r, &self.model.mesh.coords);
+        let mut sub_kinetic = 0.0;
+        let contact_result = match (contact, predicted) {
+            (Some(contact), Some(p)) => {
+                let input = ContactStepInput {
+                    step,
+                    time: t,
+                    dt: dt_contact,
+                    inv_mass: ctx.inv_mass,
+                    coords,
+                    u_old: ctx.u,
+                    u_pred: &p.u_pred,
+                    v_pred: &p.v_pred,
+                };
+                let (result, ()) = rayon::join(|| contact_forces(contact, &input, r), node_pass);
+                Some(result)
+            }
+            (contact, _) => {
+                node_pass();
+                // 3a. Coarse nodes: keep U^{n+2^L} of those that updated, and set every
+                // coarse node's displacement at t^{n+1} by linear interpolation (serial,
+                // fixed order); those that did not update keep their velocity and count
+                // ½ M |V|² as kinetic.
+                if let Some(s) = self.subcycling.as_mut() {
+                    let next = step + 1;
+                    for &i in &s.coarse_nodes {
+                        let i = i as usize;
+                        let l = s.node_level[i];
+                        if crate::element::groups::Due::at(step, l) {
+                            s.u_end[i] = self.u_next[i];
+                        } else {
+                            let v = self.v[i];
+                            self.v_next[i] = v;
+                            sub_kinetic += 0.5
+                                * self.model.mass[i]
+                                * (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+                        }
+                        let period = 1u64 << l;
+                        let left = (period - next % period) % period;
+                        self.u_next[i] = if left == 0 {
+                            s.u_end[i]
+                        } else {
+                            let tau = left as f64 * dt;
+                            let (ue, v) = (s.u_end[i], self.v_next[i]);
+                            std::array::from_fn(|d| ue[d] - tau * v[d])
+                        };
+                    }
+                }
+                contact.map(|contact| {
+                    let input = ContactStepInput {
+                        step,
+                        time: t,
+                        dt: dt_contact,
+                        inv_mass: &self.model.inv_mass,
+                        coords,
+                        u_old: &self.u,
+                        u_pred: &self.u_next,
+                        v_pred: &self.v_next,
+                    };
+                    contact_forces(contact, &input, r)
+                })
+            }
+        };
+        debug_assert_eq!(n, self.u_next.len());
+        if let Some(result) = contact_result {
+            let seconds = result?;
+            self.contact_seconds += seconds;
+            let contact = self.model.contact.as_ref().expect("contact solved");
             self.contact_nodes
                 .extend_from_slice(contact.touched_nodes());
-            self.contact_seconds += started.elapsed().as_secs_f64();
         }
         // 5. Correction at the touched nodes (with the energy fix-up), in fixed chunks of
         // the touched-node list: each node's new motion on its own, the energy fix-up

@@ -3,6 +3,7 @@
 
 pub mod checkpoint;
 pub mod checkpoint_seal;
+mod contact_overlap;
 pub mod dynamic;
 pub mod energy;
 pub mod schedule;

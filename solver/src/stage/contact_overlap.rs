@@ -4,13 +4,13 @@
 //! of the nodes that can take part in contact only — the nodes of surface a, their
 //! partners and the nodes of surface b's faces ([`ContactSystem::surface_nodes`]) — and it
 //! is serial: run after the node pass, as the step was written, it leaves every thread but
-//! one idle for its whole length (≈ 5 % of a step of the Yingxiuwan full mesh). So the
-//! predictor of those nodes is formed first, on its own (a pre-pass, in parallel), and
-//! published into arrays of the contact's own; the contact solve then runs on one thread
-//! while the others form the predictor of every other node. Each node's predictor is the
-//! same computation either way, and the pre-pass results enter the node pass's per-chunk
-//! sums (energy parts, velocity check) at the node's place in node order: the step is the
-//! same bit for bit.
+//! one idle for its whole length (≈ 4 % of the wall time of a late step of the Yingxiuwan
+//! full mesh). So the predictor of those nodes is formed first, on its own (a pre-pass,
+//! in parallel), and published into arrays of the contact's own; the contact solve then
+//! runs on one thread while the others form the predictor of every other node. Each node's
+//! predictor is the same computation either way, and the pre-pass results enter the node
+//! pass's per-chunk sums (energy parts, velocity check) at the node's place in node order:
+//! the step is the same bit for bit.
 //!
 //! The published arrays hold NaN at every node outside the set, so that a contact solve
 //! reading a node it did not declare gives a non-finite force (the run stops there with

@@ -171,7 +171,8 @@ pub struct Simulation {
     /// Multi-time-step integration, when enabled.
     subcycling: Option<Subcycling>,
     /// The contact set's predictor, formed before the node pass (module
-    /// `contact_overlap`); built at the first step with contact.
+    /// `contact_overlap`); built with the simulation (or at the first step, for contact
+    /// added to the model after it).
     contact_predictor: Option<ContactPredictor<ChunkResult>>,
     /// Solve contact beside the node pass ([`Simulation::set_contact_beside_node_pass`]).
     contact_beside: bool,
@@ -274,7 +275,11 @@ impl Simulation {
             last_step: dt,
             on_grid: true,
             subcycling: None,
-            contact_predictor: None,
+            contact_predictor: model
+                .contact
+                .as_ref()
+                .filter(|c| !c.is_empty())
+                .map(|c| ContactPredictor::new(c, n)),
             contact_beside: true,
             model,
         }

@@ -164,8 +164,9 @@ fn block(name: &str, origin: [f64; 3], size: [f64; 3], div: [usize; 3]) -> Block
 }
 
 /// Run `steps` random steps on an interface through `compute()` and check the global
-/// properties every step: Σ R = 0 (action = −reaction, also through face nodes), work of
-/// the contact forces ≤ 0, cohesion never returns, friction work non-decreasing.
+/// properties every step: Σ R = 0 (action = −reaction, also through face nodes), each
+/// touched node listed once, work of the contact forces ≤ 0, cohesion never returns,
+/// friction work non-decreasing.
 fn run_random_steps(
     mesh: &dcfm::mesh::Mesh,
     spec: InterfaceSpec,
@@ -213,6 +214,14 @@ fn run_random_steps(
             fmax = fmax.max(norm(r[k]));
         }
         prop_assert!(norm(sum) <= 1e-10 * fmax.max(1.0), "Σ R = {sum:?}");
+        // Each node once: the step writes the touched nodes' corrected motion in parallel,
+        // one iteration per listed node.
+        let mut listed = sys.touched_nodes().to_vec();
+        listed.sort_unstable();
+        prop_assert!(
+            listed.windows(2).all(|w| w[0] != w[1]),
+            "a node listed twice among the touched nodes"
+        );
         if pair_moment {
             prop_assert!(norm(moment) <= 1e-9 * fmax.max(1.0), "Σ x × R = {moment:?}");
         }

@@ -9,10 +9,13 @@
 //! loop in its order — the same F bit for bit on any number of threads.
 
 use super::NodalLoad;
+use crate::element::groups::SharedMut;
 use rayon::prelude::*;
 
 /// Loaded nodes per task of the parallel sum.
 const NODES_PER_TASK: usize = 2048;
+/// Loads per task of the parallel evaluation of their histories.
+const LOADS_PER_TASK: usize = 2048;
 
 /// For each loaded node (ascending) the loads acting on it, in load order.
 #[derive(Clone, Debug, Default)]
@@ -25,8 +28,6 @@ pub struct LoadsByNode {
     load: Vec<u32>,
     /// Scratch: h_k(t) of every load at the current time.
     scale: Vec<f64>,
-    /// Scratch: F of every loaded node.
-    sums: Vec<[f64; 3]>,
 }
 
 impl LoadsByNode {
@@ -50,7 +51,6 @@ impl LoadsByNode {
         }
         start.push(entries.len() as u32);
         Self {
-            sums: vec![[0.0; 3]; nodes.len()],
             nodes,
             start,
             load: entries.iter().map(|&(_, k)| k).collect(),
@@ -68,15 +68,25 @@ impl LoadsByNode {
     /// same node sets, in the same order).
     pub fn apply(&mut self, loads: &[NodalLoad], t: f64, f_ext: &mut [[f64; 3]]) {
         debug_assert_eq!(loads.len(), self.scale.len(), "the loads of `new`");
-        for (h, l) in self.scale.iter_mut().zip(loads) {
-            *h = l.history.value(t);
-        }
-        let (start, load, scale) = (&self.start, &self.load, &self.scale);
-        self.sums
+        self.scale
             .par_iter_mut()
+            .zip(loads.par_iter())
+            .with_min_len(LOADS_PER_TASK)
+            .for_each(|(h, l)| *h = l.history.value(t));
+        let (start, load, scale) = (&self.start, &self.load, &self.scale);
+        // The nodes are ascending and each listed once: the last is the largest.
+        assert!(
+            self.nodes
+                .last()
+                .is_none_or(|&i| (i as usize) < f_ext.len()),
+            "a loaded node outside the mesh"
+        );
+        let out = SharedMut(f_ext.as_mut_ptr());
+        self.nodes
+            .par_iter()
             .enumerate()
             .with_min_len(NODES_PER_TASK)
-            .for_each(|(j, sum)| {
+            .for_each(|(j, &i)| {
                 let mut f = [0.0; 3];
                 for &k in &load[start[j] as usize..start[j + 1] as usize] {
                     let (force, h) = (&loads[k as usize].force, scale[k as usize]);
@@ -84,11 +94,10 @@ impl LoadsByNode {
                         f[d] += force[d] * h;
                     }
                 }
-                *sum = f;
+                // SAFETY: i < f_ext.len() (asserted: the nodes are ascending) and each node
+                // is listed once, so no other iteration writes entry i.
+                unsafe { *out.at(i as usize) = f };
             });
-        for (&i, f) in self.nodes.iter().zip(&self.sums) {
-            f_ext[i as usize] = *f;
-        }
     }
 }
 

@@ -5,9 +5,10 @@
 //! partners and the nodes of surface b's faces ([`ContactSystem::surface_nodes`]) — and it
 //! is serial: run after the node pass, as the step was written, it leaves every thread but
 //! one idle for its whole length (≈ 4 % of the wall time of a late step of the Yingxiuwan
-//! full mesh). So the predictor of those nodes is formed first, on its own (a pre-pass,
-//! in parallel), and published into arrays of the contact's own; the contact solve then
-//! runs on one thread while the others form the predictor of every other node. Each node's
+//! full mesh). So the predictor of those nodes is formed first, on its own (a pre-pass, in
+//! parallel, each node's Ū, V̄ written into arrays of the contact's own as it is formed);
+//! the contact solve then runs on one thread while the others form the predictor of every
+//! other node. Each node's
 //! predictor is the same computation either way, and the pre-pass results enter the node
 //! pass's per-chunk sums (energy parts, velocity check) at the node's place in node order:
 //! the step is the same bit for bit.
@@ -65,11 +66,37 @@ impl<R: Copy + Default> ContactPredictor<R> {
         }
     }
 
-    /// Copy the pre-pass's Ū, V̄ into the contact's input arrays.
-    pub fn publish(&mut self) {
-        for (&i, p) in self.nodes.iter().zip(&self.predicted) {
-            self.u_pred[i as usize] = p.u;
-            self.v_pred[i as usize] = p.v;
-        }
+    /// The pre-pass: `predict(i)` of every node of the set, in parallel over chunks of
+    /// `chunk` nodes, kept in `predicted` and its Ū, V̄ written into the contact's input
+    /// arrays at the node's place (each node of the set is one entry: the set is unique).
+    pub fn predict<F>(&mut self, chunk: usize, predict: F)
+    where
+        R: Send,
+        F: Fn(usize) -> PredictedNode<R> + Sync,
+    {
+        use crate::element::groups::SharedMut;
+        use rayon::prelude::*;
+        let n = self.u_pred.len();
+        assert!(self.v_pred.len() == n && self.nodes.iter().all(|&i| (i as usize) < n));
+        let (u_pub, v_pub) = (
+            SharedMut(self.u_pred.as_mut_ptr()),
+            SharedMut(self.v_pred.as_mut_ptr()),
+        );
+        self.predicted
+            .par_chunks_mut(chunk)
+            .zip(self.nodes.par_chunks(chunk))
+            .for_each(|(out, ids)| {
+                for (o, &i) in out.iter_mut().zip(ids) {
+                    let q = predict(i as usize);
+                    // SAFETY: i < n (asserted above) and the set lists each node once
+                    // (`ContactSystem::surface_nodes` is unique; `new` keeps it so): no
+                    // other iteration writes entry i.
+                    unsafe {
+                        *u_pub.at(i as usize) = q.u;
+                        *v_pub.at(i as usize) = q.v;
+                    }
+                    *o = q;
+                }
+            });
     }
 }

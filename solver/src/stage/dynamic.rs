@@ -38,7 +38,7 @@
 use rayon::prelude::*;
 
 use crate::contact::{ContactStepInput, ContactSystem};
-use crate::element::groups::{add_internal_forces, ForceSettings};
+use crate::element::groups::{add_internal_forces, ForceSettings, SharedMut};
 use crate::error::{DcfmError, Result};
 use crate::load::LoadsByNode;
 use crate::model::Model;
@@ -139,8 +139,6 @@ pub struct Simulation {
     /// Contact forces Rⁿ (zero except at the nodes listed in `contact_nodes`).
     r: Vec<[f64; 3]>,
     contact_nodes: Vec<u32>,
-    /// Scratch of the contact correction (stage 5): U^{n+1}, V^{n+½} of each touched node.
-    contact_corrected: Vec<([f64; 3], [f64; 3])>,
     /// Scratch of the contact correction: the energy fix-up of each chunk of touched nodes.
     contact_fix_parts: Vec<EnergyParts>,
     /// Index into `model.constraints.prescribed` for each node DOF (u32::MAX: none).
@@ -253,7 +251,6 @@ impl Simulation {
             loads_by_node,
             r: vec![[0.0; 3]; n],
             contact_nodes: Vec::new(),
-            contact_corrected: Vec::new(),
             contact_fix_parts: Vec::new(),
             prescribed_of,
             chunks: vec![ChunkResult::default(); n_chunks],
@@ -588,18 +585,12 @@ impl Simulation {
         let predictor = self.contact_predictor.as_mut().filter(|_| beside);
         let predicted = match predictor {
             Some(p) => {
-                p.predicted
-                    .par_chunks_mut(CONTACT_CHUNK)
-                    .zip(p.nodes.par_chunks(CONTACT_CHUNK))
-                    .for_each(|(out, ids)| {
-                        for (o, &i) in out.iter_mut().zip(ids) {
-                            let mut result = ChunkResult::default();
-                            let (mut u, mut v, mut a) = ([0.0; 3], [0.0; 3], [0.0; 3]);
-                            node(i as usize, &mut u, &mut v, &mut a, &mut result);
-                            *o = PredictedNode { u, v, a, result };
-                        }
-                    });
-                p.publish();
+                p.predict(CONTACT_CHUNK, |i| {
+                    let mut result = ChunkResult::default();
+                    let (mut u, mut v, mut a) = ([0.0; 3], [0.0; 3], [0.0; 3]);
+                    node(i, &mut u, &mut v, &mut a, &mut result);
+                    PredictedNode { u, v, a, result }
+                });
                 Some(&*p)
             }
             None => None,
@@ -720,26 +711,36 @@ impl Simulation {
         // 5. Correction at the touched nodes (with the energy fix-up), in fixed chunks of
         // the touched-node list: each node's new motion on its own, the energy fix-up
         // summed per chunk and the chunks in order (the same sums on any thread count).
+        // Each touched node's corrected Ū, V̄ and its acceleration are written in place:
+        // the list holds each node once (`ContactSystem::touched_nodes`, its stamps; the
+        // property test `contact_properties` checks it every step), so each entry is read
+        // and written by one iteration alone.
         let nodes = &self.contact_nodes;
-        let corrected = &mut self.contact_corrected;
-        // Every entry is written below: only the length is set (no fill when it is the
-        // last step's).
-        corrected.resize(nodes.len(), ([0.0; 3], [0.0; 3]));
+        assert!(
+            nodes.iter().all(|&i| (i as usize) < n),
+            "touched node outside the mesh"
+        );
         let fix_parts = &mut self.contact_fix_parts;
         fix_parts.clear();
         fix_parts.resize(nodes.len().div_ceil(CONTACT_CHUNK), [0.0; 13]);
         {
-            let (u_next, v_next, r) = (&self.u_next, &self.v_next, &self.r);
+            let u_next = SharedMut(self.u_next.as_mut_ptr());
+            let v_next = SharedMut(self.v_next.as_mut_ptr());
+            let accel = SharedMut(self.a.as_mut_ptr());
+            let r = &self.r;
             let boundary_slot = &self.boundary_slot;
             let boundaries = self.model.boundaries.as_ref();
             let inv_mass = &self.model.inv_mass;
-            corrected
-                .par_chunks_mut(CONTACT_CHUNK)
-                .zip(fix_parts.par_iter_mut())
+            fix_parts
+                .par_iter_mut()
                 .zip(nodes.par_chunks(CONTACT_CHUNK))
-                .for_each(|((out, fix), ids)| {
-                    for (o, &i) in out.iter_mut().zip(ids) {
+                .for_each(|(fix, ids)| {
+                    for &i in ids {
                         let i = i as usize;
+                        // SAFETY: i < n (asserted) and listed once: no other iteration
+                        // reads or writes entry i of these arrays.
+                        let (u_i, v_i, a_i) =
+                            unsafe { (&mut *u_next.at(i), &mut *v_next.at(i), &mut *accel.at(i)) };
                         let slot = boundary_slot[i];
                         let (un, vn, before, after) = if slot != u32::MAX {
                             // A boundary node: its update with the contact force as one
@@ -750,24 +751,23 @@ impl Simulation {
                             (un, vn, before, after)
                         } else {
                             let w = inv_mass[i];
-                            let before = ctx.energy_parts(i, &v_next[i], &[0.0; 3]);
-                            let (mut un, mut vn) = (u_next[i], v_next[i]);
+                            let before = ctx.energy_parts(i, v_i, &[0.0; 3]);
+                            let (mut un, mut vn) = (*u_i, *v_i);
                             for d in 0..3 {
                                 un[d] += h * dt_v * w * r[i][d];
                                 vn[d] += dt_v * w * r[i][d];
                             }
                             (un, vn, before, ctx.energy_parts(i, &vn, &r[i]))
                         };
-                        *o = (un, vn);
+                        (*u_i, *v_i) = (un, vn);
+                        // The acceleration of the corrected motion.
+                        let vo = &ctx.v[i];
+                        *a_i = std::array::from_fn(|d| (vn[d] - vo[d]) / dt_v);
                         for k in 0..13 {
                             fix[k] += after[k] - before[k];
                         }
                     }
                 });
-        }
-        for (&i, &(un, vn)) in nodes.iter().zip(corrected.iter()) {
-            self.u_next[i as usize] = un;
-            self.v_next[i as usize] = vn;
         }
         let mut contact_fix: EnergyParts = [0.0; 13];
         for part in fix_parts.iter() {
@@ -831,12 +831,8 @@ impl Simulation {
                 ),
             ));
         }
-        // Commit (the accelerations of the other nodes were set in the node pass).
-        for &i in &self.contact_nodes {
-            let i = i as usize;
-            let (vn, vo) = (&self.v_next[i], &self.v[i]);
-            self.a[i] = std::array::from_fn(|d| (vn[d] - vo[d]) / dt_v);
-        }
+        // Commit (the accelerations were set in the node pass and, at the touched nodes,
+        // in the correction).
         std::mem::swap(&mut self.u, &mut self.u_next);
         std::mem::swap(&mut self.v, &mut self.v_next);
         match self.subcycling.as_ref() {

@@ -324,19 +324,22 @@ mod tests {
 
     /// Forces and states of the lane kernel (plain and dispatched, buffered and in place)
     /// against the scalar kernel, for `draws` random elements, with and without an initial
-    /// strain; in place also whether some point's hardening moved. Returns the number of
-    /// points updated to a damaged and to an undamaged state, and whether the in-place
-    /// kernel reported [no hardening moved, some moved] in some draw.
+    /// strain; in place also whether some point's hardening moved. Three steps: loading
+    /// from the virgin state, further loading, and unloading (damaged points inside their
+    /// surface). Returns the number of points updated to a damaged and to an undamaged
+    /// state, whether the in-place kernel reported [no hardening moved, some moved] in some
+    /// draw, and the number of damaged points whose update kept their hardening.
     fn compare(
         material: &Material,
         mag: (f64, f64),
         draws: usize,
         seed: u64,
-    ) -> (usize, usize, [bool; 2]) {
+    ) -> (usize, usize, [bool; 2], usize) {
         let mut rng = Lcg(seed);
         let stride = material.state_len();
         let (mut damaged, mut intact) = (0, 0);
         let mut moved_seen = [false; 2];
+        let mut kept_damaged = 0;
         for draw in 0..draws {
             let m = mag.0 * (mag.1 / mag.0).powf(rng.next());
             let (geo, u) = random_element(&mut rng, m);
@@ -352,10 +355,11 @@ mod tests {
                 dt: 1e-4,
                 reads_damage: false,
             };
-            // Two steps: from the virgin state, then from the state the first left (some
-            // points yielded and damaged) to a larger displacement.
-            for step in 0..2 {
-                let us = u.map(|ua| ua.map(|x| (1.0 + 0.5 * step as f64) * x));
+            // Three steps: from the virgin state, then from the state the first left (some
+            // points yielded and damaged) to a larger displacement, then back to a smaller
+            // one (most damaged points unload inside their surface).
+            for factor in [1.0, 1.5, 1.2] {
+                let us = u.map(|ua| ua.map(|x| factor * x));
                 let mut next = Vec::new();
                 for eps0 in [None, Some(&e0[..])] {
                     let mut want = [[0.0; 3]; 8];
@@ -424,9 +428,15 @@ mod tests {
                         assert_eq!(moved, want_moved, "hardening moved, draw {draw}");
                         moved_seen[usize::from(moved)] = true;
                     }
-                    for state in want_state.chunks_exact(stride.max(1)) {
+                    for (o, state) in old
+                        .chunks_exact(stride.max(1))
+                        .zip(want_state.chunks_exact(stride.max(1)))
+                    {
                         match material.tensile_and_compressive_damage(state) {
-                            Some((dt, dc)) if dt > 0.0 || dc > 0.0 => damaged += 1,
+                            Some((dt, dc)) if dt > 0.0 || dc > 0.0 => {
+                                damaged += 1;
+                                kept_damaged += usize::from(!material.hardening_moved(o, state));
+                            }
                             _ => intact += 1,
                         }
                     }
@@ -435,7 +445,7 @@ mod tests {
                 old = next;
             }
         }
-        (damaged, intact, moved_seen)
+        (damaged, intact, moved_seen, kept_damaged)
     }
 
     #[test]
@@ -454,13 +464,35 @@ mod tests {
         // Displacements from well inside the elastic range to cracking and crushing
         // (ε_t0 ≈ 1e-4 on ≈ 1 m elements).
         let (material, _) = cracking_concrete();
-        let (damaged, intact, moved_seen) =
+        let (damaged, intact, moved_seen, _) =
             compare(&material, (1e-6, 3e-3), 300, 0x0dd_ba11_cafe_0002);
         // Both the never-yielded shortcut and the return mapping are exercised, and the
         // in-place kernel saw elements whose hardening moved and elements whose did not.
         assert!(
             damaged > 500 && intact > 500,
             "{damaged} damaged, {intact} intact points"
+        );
+        assert_eq!(moved_seen, [true, true]);
+    }
+
+    /// The consistent recovery rule (the Yingxiuwan concrete's), whose damaged points
+    /// inside their surface take the yielded-elastic shortcut in lanes: forces and states
+    /// as the scalar update's, bit for bit, with many such points.
+    #[test]
+    fn lanes_give_the_scalar_forces_and_states_bit_for_bit_under_the_consistent_rule() {
+        use crate::material::plastic_damage::{PlasticDamageParams, Recovery};
+        let el = Elastic::new("concrete", 30e9, 0.2, 2400.0).unwrap();
+        let params = PlasticDamageParams {
+            recovery: Recovery::Consistent,
+            ..PlasticDamageParams::from_strengths(3e6, 20e6, 30e6, 100.0, 10e3)
+        };
+        let pd = crate::material::PlasticDamage::new("concrete", el, &params).unwrap();
+        let material = Material::PlasticDamage(Box::new(pd));
+        let (damaged, intact, moved_seen, kept) =
+            compare(&material, (1e-6, 3e-3), 300, 0xc0_5157_e470_0003);
+        assert!(
+            damaged > 500 && intact > 500 && kept > 300,
+            "{damaged} damaged, {intact} intact points, {kept} damaged and kept"
         );
         assert_eq!(moved_seen, [true, true]);
     }

@@ -11,7 +11,7 @@
 //! never contracts a multiply and an add into an FMA by itself), so the lane kernels give
 //! the scalar kernels' results bit for bit; the tests compare them on random elements.
 
-use std::ops::{Add, Index, IndexMut, Mul, Neg, Sub};
+use std::ops::{Add, Div, Index, IndexMut, Mul, Neg, Sub};
 
 /// Elements per lane block. 8 × f64: one AVX-512 register, two AVX2 registers.
 pub const LANES: usize = 8;
@@ -41,6 +41,20 @@ impl F64s {
     #[inline(always)]
     pub fn max(self, other: F64s) -> Self {
         F64s(std::array::from_fn(|l| self.0[l].max(other.0[l])))
+    }
+
+    /// `f64::min` lane by lane.
+    #[inline(always)]
+    pub fn min(self, other: F64s) -> Self {
+        F64s(std::array::from_fn(|l| self.0[l].min(other.0[l])))
+    }
+
+    /// Lane `l` of `a` where `pick[l]`, else of `b`.
+    #[inline(always)]
+    pub fn select(pick: &[bool; LANES], a: F64s, b: F64s) -> Self {
+        F64s(std::array::from_fn(
+            |l| if pick[l] { a.0[l] } else { b.0[l] },
+        ))
     }
 }
 
@@ -77,6 +91,7 @@ macro_rules! lane_op {
 lane_op!(Add, add, +);
 lane_op!(Sub, sub, -);
 lane_op!(Mul, mul, *);
+lane_op!(Div, div, /);
 
 impl Mul<F64s> for f64 {
     type Output = F64s;
@@ -186,7 +201,12 @@ pub fn lane_of(x: &NodalLanes, l: usize) -> [[f64; 3]; 8] {
 /// A number the shared formulas are written for once: one `f64` (the scalar kernels) or an
 /// [`F64s`] (one value per lane), with the same IEEE operations in either.
 pub trait Lane:
-    Copy + Add<Output = Self> + Sub<Output = Self> + Mul<Output = Self> + Neg<Output = Self>
+    Copy
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
 {
     /// `x` (in every lane).
     fn splat(x: f64) -> Self;
@@ -194,6 +214,8 @@ pub trait Lane:
     fn sqrt(self) -> Self;
     /// `f64::max` (lane by lane).
     fn max(self, other: Self) -> Self;
+    /// `f64::min` (lane by lane).
+    fn min(self, other: Self) -> Self;
 }
 
 impl Lane for f64 {
@@ -209,6 +231,10 @@ impl Lane for f64 {
     fn max(self, other: Self) -> Self {
         f64::max(self, other)
     }
+    #[inline(always)]
+    fn min(self, other: Self) -> Self {
+        f64::min(self, other)
+    }
 }
 
 impl Lane for F64s {
@@ -223,6 +249,10 @@ impl Lane for F64s {
     #[inline(always)]
     fn max(self, other: Self) -> Self {
         F64s::max(self, other)
+    }
+    #[inline(always)]
+    fn min(self, other: Self) -> Self {
+        F64s::min(self, other)
     }
 }
 
@@ -254,6 +284,10 @@ mod tests {
         let b = F64s::splat(2.0);
         assert_eq!((a * b + a - b).0[3], 3.5 * 2.0 + 3.5 - 2.0);
         assert_eq!((-a).0[7], -7.5);
+        assert_eq!((a / b).0[1], 1.5 / 2.0);
+        assert_eq!(a.min(b).0[5], 2.0);
+        let pick = std::array::from_fn(|l| l % 2 == 0);
+        assert_eq!(F64s::select(&pick, a, b).0[..2], [0.5, 2.0]);
         assert_eq!(std::mem::align_of::<F64s>(), 64);
         assert_eq!(std::mem::size_of::<F64s>(), 8 * LANES);
         struct Square(F64s);

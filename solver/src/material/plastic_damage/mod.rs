@@ -25,6 +25,7 @@ mod points_in_lanes;
 mod potential;
 mod principal;
 mod recovery;
+mod recovery_in_lanes;
 mod return_mapping;
 mod yield_surface;
 
@@ -576,10 +577,8 @@ impl PlasticDamage {
             // σₙ as the last update returned it: stress_from_state(ε₀, old) bit for bit.
             let sig0 = voigt(&old[slot::STRESS..]);
             let eps0 = voigt(&old[slot::STRAIN..]);
-            let work = 0.5 * dot(&add(&sig0, &sig), &sub(strain, &eps0));
-            let psi0 = 0.5 * dot(&sig0, &sub(&eps0, &start.plastic));
-            let psi1 = 0.5 * dot(&sig, &sub(strain, &st.plastic));
-            old[slot::DISSIPATED] + work - (psi1 - psi0)
+            let from = (&sig0, &eps0, &start.plastic);
+            dissipated_after(old[slot::DISSIPATED], from, (&sig, strain, &st.plastic))
         };
         new[slot::STRESS..slot::STRESS + 6].copy_from_slice(&sig);
         sig
@@ -888,13 +887,29 @@ fn write_virgin_lane(n: &mut [f64], strain: &VoigtLanes, eff: &VoigtLanes, l: us
     n[slot::DAMAGE] = 0.0;
 }
 
+/// The total dissipation density after a step from (σₙ, εₙ, εᵖₙ) = `from` to (σₙ₊₁,
+/// εₙ₊₁, εᵖₙ₊₁) = `to` (one point, or one per lane): `old` plus the trapezoidal work
+/// ½(σₙ + σₙ₊₁):Δε minus the change of the recoverable energy ψ = ½ σ:(ε − εᵖ).
+#[inline(always)]
+fn dissipated_after<T: Lane>(
+    old: T,
+    (sig0, eps0, plastic0): (&[T; 6], &[T; 6], &[T; 6]),
+    (sig, eps, plastic): (&[T; 6], &[T; 6], &[T; 6]),
+) -> T {
+    let half = T::splat(0.5);
+    let work = half * dot(&add(sig0, sig), &sub(eps, eps0));
+    let psi0 = half * dot(sig0, &sub(eps0, plastic0));
+    let psi1 = half * dot(sig, &sub(eps, plastic));
+    old + work - (psi1 - psi0)
+}
+
 #[inline]
 fn voigt(s: &[f64]) -> Voigt {
     [s[0], s[1], s[2], s[3], s[4], s[5]]
 }
 
 #[inline]
-fn sub(a: &Voigt, b: &Voigt) -> Voigt {
+fn sub<T: Lane>(a: &[T; 6], b: &[T; 6]) -> [T; 6] {
     [
         a[0] - b[0],
         a[1] - b[1],
@@ -906,7 +921,7 @@ fn sub(a: &Voigt, b: &Voigt) -> Voigt {
 }
 
 #[inline]
-fn add(a: &Voigt, b: &Voigt) -> Voigt {
+fn add<T: Lane>(a: &[T; 6], b: &[T; 6]) -> [T; 6] {
     [
         a[0] + b[0],
         a[1] + b[1],
@@ -918,7 +933,7 @@ fn add(a: &Voigt, b: &Voigt) -> Voigt {
 }
 
 #[inline]
-fn dot(a: &Voigt, b: &Voigt) -> f64 {
+fn dot<T: Lane>(a: &[T; 6], b: &[T; 6]) -> T {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2] + a[3] * b[3] + a[4] * b[4] + a[5] * b[5]
 }
 

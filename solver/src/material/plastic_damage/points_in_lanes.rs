@@ -1,14 +1,45 @@
 //! The update of the eight Gauss points of a fully integrated element with the points in
 //! SIMD lanes (issue 11): the never-yielded check of [`PlasticDamage::virgin_elastic`]
 //! (trial effective stress, invariant bound of eq. 25) for the eight points at once, and
-//! the general update ([`PlasticDamage::update`]) for the points that fail it. Each lane
-//! performs the scalar check's IEEE operations in the same order, so states and stresses
-//! are those of eight calls of [`PlasticDamage::update`] bit for bit (tested in
-//! `element::hex8_full_lanes`).
+//! the shortcut of [`PlasticDamage::yielded_elastic`] under the consistent recovery rule
+//! for a yielded point inside its surface by the invariant bound (the bound, the nominal
+//! stress of `recovery_in_lanes` and the dissipation in lanes), and the general update
+//! ([`PlasticDamage::update`]) for the points that take neither. Each lane performs the
+//! scalar path's IEEE operations in the same order, so states and stresses are those of
+//! eight calls of [`PlasticDamage::update`] bit for bit (tested in
+//! `element::hex8_full_lanes`, and the nominal stress in `recovery_in_lanes`).
 
-use super::{slot, virgin_bracket, write_virgin_lane, PlasticDamage};
+use super::recovery_in_lanes::consistent_stress_lanes;
+use super::{
+    dissipated_after, slot, virgin_bound, virgin_bracket, write_virgin_lane, PlasticDamage,
+    Recovery,
+};
 use crate::element::lanes::{elastic_stress, F64s, VoigtLanes, LANES};
 use crate::material::{PointContext, Voigt};
+
+/// What the yielded-elastic shortcut gives the points of an element that take it in lanes
+/// ([`PlasticDamage::yielded_lanes`]): which lanes, their nominal stresses, the D slot
+/// and the dissipation density to store.
+struct YieldedLanes {
+    pass: [bool; LANES],
+    sigma: VoigtLanes,
+    damage: F64s,
+    dissipated: F64s,
+}
+
+impl YieldedLanes {
+    /// The new state of lane `g` over its old values in `n` (a yielded-elastic step keeps
+    /// εᵖ, y_t, y_c and the fracture energy): [`PlasticDamage::commit`]'s writes.
+    #[inline(always)]
+    fn write(&self, n: &mut [f64], strain: &VoigtLanes, g: usize) {
+        for i in 0..6 {
+            n[slot::STRAIN + i] = strain[i][g];
+            n[slot::STRESS + i] = self.sigma[i][g];
+        }
+        n[slot::DAMAGE] = self.damage[g];
+        n[slot::DISSIPATED] = self.dissipated[g];
+    }
+}
 
 impl PlasticDamage {
     /// The never-yielded shortcut of the eight points of an element whose states are
@@ -53,6 +84,115 @@ impl PlasticDamage {
         (eff, pass)
     }
 
+    /// [`PlasticDamage::yielded_elastic`] for the points of an element in lanes, under the
+    /// consistent recovery rule with D not read by the element: a point that has yielded
+    /// (y_t or y_c ≠ 0), has a finite strain, was not taken by the never-yielded check
+    /// (`virgin`) and is inside its surface by the invariant bound keeps its internal
+    /// variables; its nominal stress, D slot and dissipation are those of
+    /// [`PlasticDamage::commit`] for an unchanged state, bit for bit. Points the bound
+    /// leaves open (tested at their exact principal values by the scalar path: measured no
+    /// faster in lanes, docs/benchmarks.md), points outside, under the other rule or with D
+    /// read take the scalar path, which decides as before. `eff`: σ̄ = E₀ : (ε − εᵖ) per lane
+    /// ([`Self::virgin_lanes`]). Reads the states only.
+    #[inline(always)]
+    fn yielded_lanes(
+        &self,
+        strain: &VoigtLanes,
+        eff: &VoigtLanes,
+        states: &[f64],
+        virgin: &[bool; LANES],
+        ctx: &PointContext,
+    ) -> YieldedLanes {
+        const N: usize = slot::LEN;
+        let mut out = YieldedLanes {
+            pass: [false; LANES],
+            sigma: [F64s::ZERO; 6],
+            damage: F64s::ZERO,
+            dissipated: F64s::ZERO,
+        };
+        if self.constants.recovery != Recovery::Consistent || ctx.reads_damage {
+            return out;
+        }
+        let states = &states[..LANES * N];
+        let mut candidate = [false; LANES];
+        let mut any = false;
+        for (g, state) in states.chunks_exact(N).enumerate() {
+            candidate[g] = !virgin[g]
+                && (state[slot::Y_T] != 0.0 || state[slot::Y_C] != 0.0)
+                && strain.iter().all(|e| e[g].is_finite());
+            any |= candidate[g];
+        }
+        if !any {
+            return out;
+        }
+        let (t, c) = self.element_laws(ctx.char_length.max(1e-12));
+        // β < 0 fails the check (the bound needs F non-decreasing in σ̂_max).
+        let (mut beta, mut limit) = (F64s::splat(-1.0), F64s::ZERO);
+        let (mut d_t, mut d_c) = (F64s::ZERO, F64s::ZERO);
+        for (g, state) in states.chunks_exact(N).enumerate() {
+            if !candidate[g] {
+                continue;
+            }
+            let (ct, dt) = t.law.effective_and_damage(state[slot::Y_T]);
+            let (cc, dc) = c.law.effective_and_damage(state[slot::Y_C]);
+            let (b, lim) = virgin_bound(&self.surface, ct, cc);
+            (beta[g], limit[g], d_t[g], d_c[g]) = (b, lim, dt, dc);
+        }
+        let bracket = virgin_bracket(&self.surface, beta, eff);
+        let mut any = false;
+        for g in 0..LANES {
+            out.pass[g] = candidate[g] && beta[g] >= 0.0 && bracket[g] <= limit[g];
+            any |= out.pass[g];
+        }
+        if !any {
+            return out;
+        }
+        let sig = consistent_stress_lanes(
+            eff,
+            d_t,
+            d_c,
+            (self.constants.s0, self.elastic.poisson),
+            &out.pass,
+        );
+        // The state's σₙ, εₙ, εᵖ and dissipation, lane by lane.
+        let (mut sig0, mut eps0, mut plastic) = ([F64s::ZERO; 6], [F64s::ZERO; 6], [F64s::ZERO; 6]);
+        let mut old_dissipated = F64s::ZERO;
+        for (g, state) in states.chunks_exact(N).enumerate() {
+            for i in 0..6 {
+                sig0[i][g] = state[slot::STRESS + i];
+                eps0[i][g] = state[slot::STRAIN + i];
+                plastic[i][g] = state[slot::PLASTIC + i];
+            }
+            old_dissipated[g] = state[slot::DISSIPATED];
+        }
+        // Stored whole and read back as vectors (as in `elements_in_lanes`), so that the
+        // arithmetic below is vectorised across the lanes.
+        std::hint::black_box((&mut sig0, &mut eps0, &mut plastic, &mut old_dissipated));
+        // Total dissipation of `commit` for an unchanged state (εᵖ kept); unchanged where
+        // D_t = 0.
+        let moved = dissipated_after(
+            old_dissipated,
+            (&sig0, &eps0, &plastic),
+            (&sig, strain, &plastic),
+        );
+        // D under the consistent rule where the element does not read it: 0 for D_t = D_c
+        // = 0, else NaN (`nominal_with`).
+        for g in 0..LANES {
+            out.dissipated[g] = if d_t[g] == 0.0 {
+                old_dissipated[g]
+            } else {
+                moved[g]
+            };
+            out.damage[g] = if d_t[g] == 0.0 && d_c[g] == 0.0 {
+                0.0
+            } else {
+                f64::NAN
+            };
+        }
+        out.sigma = sig;
+        out
+    }
+
     /// Update the eight points of an element, point g at strain lane g, its state
     /// `old[g·LEN..]` → `new[g·LEN..]`; returns the nominal stresses, one lane per point.
     /// The same states and stresses as [`PlasticDamage::update`] point by point.
@@ -68,6 +208,7 @@ impl PlasticDamage {
         let old = &old[..LANES * N];
         let new = &mut new[..LANES * N];
         let (eff, pass) = self.virgin_lanes(strain, old, ctx);
+        let yielded = self.yielded_lanes(strain, &eff, old, &pass, ctx);
         let mut sigma = [F64s::ZERO; 6];
         for (g, (o, n)) in old.chunks_exact(N).zip(new.chunks_exact_mut(N)).enumerate() {
             if pass[g] {
@@ -75,6 +216,12 @@ impl PlasticDamage {
                 write_virgin_lane(n, strain, &eff, g);
                 for i in 0..6 {
                     sigma[i][g] = eff[i][g];
+                }
+            } else if yielded.pass[g] {
+                n.copy_from_slice(o);
+                yielded.write(n, strain, g);
+                for i in 0..6 {
+                    sigma[i][g] = yielded.sigma[i][g];
                 }
             } else {
                 let point: Voigt = std::array::from_fn(|i| strain[i][g]);
@@ -104,6 +251,7 @@ impl PlasticDamage {
         const N: usize = slot::LEN;
         let states = &mut states[..LANES * N];
         let (eff, pass) = self.virgin_lanes(strain, states, ctx);
+        let yielded = self.yielded_lanes(strain, &eff, states, &pass, ctx);
         let mut sigma = [F64s::ZERO; 6];
         let mut moved = false;
         for (g, n) in states.chunks_exact_mut(N).enumerate() {
@@ -111,6 +259,11 @@ impl PlasticDamage {
                 write_virgin_lane(n, strain, &eff, g);
                 for i in 0..6 {
                     sigma[i][g] = eff[i][g];
+                }
+            } else if yielded.pass[g] {
+                yielded.write(n, strain, g);
+                for i in 0..6 {
+                    sigma[i][g] = yielded.sigma[i][g];
                 }
             } else {
                 let point: Voigt = std::array::from_fn(|i| strain[i][g]);

@@ -1,6 +1,7 @@
 //! Spectral (principal) decomposition of symmetric Voigt tensors: the values in closed
 //! form, the vectors from them without iteration (stack only, no allocation).
 
+use crate::element::lanes::{F64s, Lane, VoigtLanes, LANES};
 use crate::material::Voigt;
 use nalgebra::{Matrix3, Vector3};
 
@@ -19,24 +20,71 @@ fn to_matrix(s: &Voigt) -> Matrix3<f64> {
 /// far below the 1e-10 f_c0 tolerance of the return mapping.
 #[inline]
 pub fn principal_values(s: &Voigt) -> [f64; 3] {
-    let (d, e, f) = (s[3], s[4], s[5]);
-    let q = (s[0] + s[1] + s[2]) / 3.0;
-    let (a0, b0, c0) = (s[0] - q, s[1] - q, s[2] - q);
-    let p2 = a0 * a0 + b0 * b0 + c0 * c0 + 2.0 * (d * d + e * e + f * f);
-    if p2 == 0.0 {
-        return [q, q, q];
+    let mut isotropic = false;
+    let (q, values) = closed_form(s, |ratio, p2| {
+        if p2 == 0.0 {
+            isotropic = true;
+            return (0.0, 0.0);
+        }
+        angle_cosines(ratio)
+    });
+    if isotropic {
+        [q; 3]
+    } else {
+        values
     }
-    let p = (p2 / 6.0).sqrt();
+}
+
+/// [`principal_values`] of eight stress-like Voigt vectors, one per lane, bit for bit: the
+/// same IEEE operations in the same order ([`closed_form`]), with `clamp`, `acos` and `cos`
+/// (libm) called lane by lane. Lanes not in `wanted` are not evaluated past the arithmetic
+/// (their values are unspecified), so that points that need no principal values cost no
+/// libm calls.
+#[inline(always)]
+pub fn principal_values_lanes(s: &VoigtLanes, wanted: &[bool; LANES]) -> [F64s; 3] {
+    let mut isotropic = [false; LANES];
+    let (q, values) = closed_form(s, |ratio, p2| {
+        let (mut cos1, mut cos3) = (F64s::ZERO, F64s::ZERO);
+        for l in 0..LANES {
+            isotropic[l] = p2[l] == 0.0;
+            if wanted[l] && !isotropic[l] {
+                (cos1[l], cos3[l]) = angle_cosines(ratio[l]);
+            }
+        }
+        (cos1, cos3)
+    });
+    values.map(|v| F64s::select(&isotropic, q, v))
+}
+
+/// cos φ and cos(φ + 2π/3) for φ = acos(r)/3, r = det B/2 clamped to [−1, 1].
+#[inline(always)]
+fn angle_cosines(ratio: f64) -> (f64, f64) {
+    let phi = ratio.clamp(-1.0, 1.0).acos() / 3.0;
+    (phi.cos(), (phi + 2.0 * std::f64::consts::FRAC_PI_3).cos())
+}
+
+/// The closed form's arithmetic for one tensor or one per lane: q = tr/3 and the sorted
+/// values q + 2p cos φ, q + 2p cos(φ + 2π/3) and the rest of the trace, where `cosines`
+/// gives the two cosines from r = det(A − qI)/(2p³) and p² (the values are meaningless
+/// where p² = 0: the tensor is then qI).
+#[inline(always)]
+fn closed_form<T: Lane>(s: &[T; 6], cosines: impl FnOnce(T, T) -> (T, T)) -> (T, [T; 3]) {
+    let (d, e, f) = (s[3], s[4], s[5]);
+    let q = (s[0] + s[1] + s[2]) / T::splat(3.0);
+    let (a0, b0, c0) = (s[0] - q, s[1] - q, s[2] - q);
+    let p2 = a0 * a0 + b0 * b0 + c0 * c0 + T::splat(2.0) * (d * d + e * e + f * f);
+    let p = (p2 / T::splat(6.0)).sqrt();
     let det = a0 * (b0 * c0 - e * e) - d * (d * c0 - e * f) + f * (d * e - b0 * f);
-    let r = (det / (2.0 * p * p * p)).clamp(-1.0, 1.0);
-    let phi = r.acos() / 3.0;
-    let l1 = q + 2.0 * p * phi.cos();
-    let l3 = q + 2.0 * p * (phi + 2.0 * std::f64::consts::FRAC_PI_3).cos();
-    let l2 = 3.0 * q - l1 - l3;
+    let two_p = T::splat(2.0) * p;
+    let (cos1, cos3) = cosines(det / (two_p * p * p), p2);
+    let l1 = q + two_p * cos1;
+    let l3 = q + two_p * cos3;
+    let three_q = T::splat(3.0) * q;
+    let l2 = three_q - l1 - l3;
     // Guard the order against rounding.
     let hi = l1.max(l2).max(l3);
     let lo = l1.min(l2).min(l3);
-    [hi, 3.0 * q - hi - lo, lo]
+    (q, [hi, three_q - hi - lo, lo])
 }
 
 /// Signs of the principal values, known without computing them ([`definiteness`]).
@@ -349,6 +397,35 @@ mod tests {
             for i in 0..3 {
                 let res = (a * sp.vectors[i] - sp.vectors[i] * sp.values[i]).norm();
                 assert!(res <= 1e-12 * scale, "{s:?}: residual of pair {i}: {res:e}");
+            }
+        }
+    }
+
+    /// The lane form of the closed-form values is the scalar one bit for bit in every
+    /// wanted lane: random tensors, isotropic ones (p² = 0), double roots and zeros.
+    #[test]
+    fn principal_values_in_lanes_are_the_scalar_values_bit_for_bit() {
+        let mut rng = crate::test_random::Lcg(0x9a1e_5c0d_0002);
+        for draw in 0..2000 {
+            let mag = 10f64.powf(-3.0 + 9.0 * rng.next());
+            let s: VoigtLanes = std::array::from_fn(|i| {
+                F64s(std::array::from_fn(|l| match ((draw + l) % 5, i) {
+                    (0, 0..=2) => -mag,
+                    (1, 0..=1) => mag,
+                    (0..=2, _) => 0.0,
+                    _ => mag * rng.sym(),
+                }))
+            });
+            let wanted: [bool; LANES] = std::array::from_fn(|l| (draw + l) % 3 != 0);
+            let got = principal_values_lanes(&s, &wanted);
+            for l in (0..LANES).filter(|&l| wanted[l]) {
+                let want = principal_values(&std::array::from_fn(|i| s[i][l]));
+                let got_l = [got[0][l], got[1][l], got[2][l]];
+                assert_eq!(
+                    got_l.map(f64::to_bits),
+                    want.map(f64::to_bits),
+                    "draw {draw}, lane {l}"
+                );
             }
         }
     }

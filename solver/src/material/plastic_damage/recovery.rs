@@ -29,7 +29,8 @@
 //! so P is one of ∅, {1}, {1,2}, {1,2,3}: the one whose σ_i have the signs it assumes.
 
 use super::principal::{definiteness, eigenprojector, principal_values, Definiteness, Spectral};
-use super::yield_surface::{invariants, tension_weight};
+use super::yield_surface::{invariants, largest_value_bound, tension_weight};
+use crate::element::lanes::Lane;
 use crate::material::Voigt;
 
 /// How tensile damage is recovered when a crack closes.
@@ -86,7 +87,7 @@ impl<'a> Classified<'a> {
     /// Every principal value ≤ 0 by the bound Ī₁/3 + (2/3)√(3J̄₂) ≤ 0.
     #[inline]
     fn surely_compressed(&self) -> bool {
-        self.i1 / 3.0 + 2.0 * self.q / 3.0 <= 0.0
+        largest_value_bound(self.i1, self.q) <= 0.0
     }
 
     /// Every principal value ≥ 0 by the bound Ī₁/3 − (2/3)√(3J̄₂) ≥ 0.
@@ -169,11 +170,7 @@ pub fn consistent_stress(eff: &Voigt, dt: f64, dc: f64, s0: f64, nu: f64) -> Voi
 /// values shared with [`lee_fenves_damage`]).
 pub fn consistent_stress_of(c: &mut Classified, dt: f64, dc: f64, s0: f64, nu: f64) -> Voigt {
     let eff = c.eff;
-    // D_t = 1 (e^(−y) underflows): the limit of an open crack carrying no tension; capped so
-    // that A and φ stay finite (the stress changes by ~1e-12 of σ̄).
-    let dt = dt.min(1.0 - 1e-12);
-    let a = 1.0 / (1.0 - s0 * dt);
-    let phi = 1.0 / (1.0 - dt) - a;
+    let (a, phi) = recovery_factors(dt, s0);
     if phi.is_nan() || phi <= 0.0 {
         // D_t = 0 or s₀ = 1: isotropic, σ = (1 − D_c)(1 − s₀D_t) σ̄.
         return eff.map(|v| v * (1.0 - dc) / a);
@@ -187,11 +184,7 @@ pub fn consistent_stress_of(c: &mut Classified, dt: f64, dc: f64, s0: f64, nu: f
     // σᵢ = ((1 − D_c)(1+ν) σ̂ᵢ + C)/kᵢ with C = AνS − (1 − D_c)ν tr σ̄ (`offset`,
     // principal_stresses):
     // one linear map g_k(λ) = ((1 − D_c)(1+ν)λ + C)/k per set, applied to σ̄ as a whole.
-    let tr = p[0] + p[1] + p[2];
-    let s = sig[0] + sig[1] + sig[2];
-    let a1 = (1.0 - dc) * (1.0 + nu);
-    let offset = a * nu * s - (1.0 - dc) * nu * tr;
-    let k0 = a * (1.0 + nu);
+    let (a1, offset, k0) = map_coefficients(&p, &sig, dc, a, nu);
     // The direction whose value is farther from the middle one ([`Spectral::with_values`]'s
     // choice): its eigenvector, alone, is accurate to rounding over the gap.
     let top_isolated = p[0] - p[1] >= p[1] - p[2];
@@ -213,14 +206,7 @@ pub fn consistent_stress_of(c: &mut Classified, dt: f64, dc: f64, s0: f64, nu: f
     };
     let c1 = a1 / k;
     let c0 = offset / k;
-    let mut out = [
-        c1 * eff[0] + c0,
-        c1 * eff[1] + c0,
-        c1 * eff[2] + c0,
-        c1 * eff[3],
-        c1 * eff[4],
-        c1 * eff[5],
-    ];
+    let mut out = linear_map(eff, c1, c0);
     if let Some(i) = lone {
         let w = sig[i] - (a1 * p[i] + offset) / k;
         let nn = eigenprojector(eff, p[i]);
@@ -231,37 +217,68 @@ pub fn consistent_stress_of(c: &mut Classified, dt: f64, dc: f64, s0: f64, nu: f
     out
 }
 
+/// What [`select`] forms once for its four candidate sets (one point, or one per lane):
+/// tᵢ = (1 − D_c)((1+ν)σ̂ᵢ − ν tr σ̂), the two values kᵢ takes (index 0: outside P, 1: in
+/// P), their inverses, the quotients tᵢ/k and Aν. Each candidate's stresses
+/// ([`SetTerms::candidate`]) are [`principal_stresses`]`(p, m, …)` bit for bit: the same
+/// operations on the same operands, formed once rather than once per set.
+pub(super) struct SetTerms<T> {
+    t: [T; 3],
+    k: [T; 2],
+    inv: [T; 2],
+    quotient: [[T; 3]; 2],
+    a_nu: T,
+}
+
+impl<T: Lane> SetTerms<T> {
+    /// The terms for sorted principal effective stresses `p`, damage `dc`, A = `a`, φ = `phi`.
+    #[inline(always)]
+    pub(super) fn new(p: &[T; 3], dc: T, a: T, phi: T, nu: f64) -> Self {
+        let one = T::splat(1.0);
+        let nu_t = T::splat(nu);
+        let tr = p[0] + p[1] + p[2];
+        let t = std::array::from_fn(|i| (one - dc) * (T::splat(1.0 + nu) * p[i] - nu_t * tr));
+        let k_open = a * T::splat(1.0 + nu);
+        let k = [k_open + T::splat(0.0), k_open + phi];
+        let inv = [one / k[0], one / k[1]];
+        let quotient = std::array::from_fn(|j| std::array::from_fn(|i| t[i] / k[j]));
+        Self {
+            t,
+            k,
+            inv,
+            quotient,
+            a_nu: a * nu_t,
+        }
+    }
+
+    /// The principal stresses of the set P = the first `m` directions and how far they
+    /// violate the signs it assumes (Σ⟨−σᵢ⟩ over P plus Σ⟨σᵢ⟩ outside; 0 when consistent).
+    #[inline(always)]
+    pub(super) fn candidate(&self, m: usize) -> ([T; 3], T) {
+        let zero = T::splat(0.0);
+        let in_p = |i: usize| usize::from(i < m);
+        let (mut num, mut inv_sum) = (zero, zero);
+        for i in 0..3 {
+            num = num + self.quotient[in_p(i)][i];
+            inv_sum = inv_sum + self.inv[in_p(i)];
+        }
+        let sum = num / (T::splat(1.0) - self.a_nu * inv_sum);
+        let s: [T; 3] = std::array::from_fn(|i| (self.t[i] + self.a_nu * sum) / self.k[in_p(i)]);
+        let mut violation = zero;
+        for (i, v) in s.iter().enumerate() {
+            violation = violation + if i < m { (-*v).max(zero) } else { v.max(zero) };
+        }
+        (s, violation)
+    }
+}
+
 /// The tension set P = first `m` directions whose stresses have the assumed signs; when
-/// rounding leaves none exactly consistent, the least violating one. Each candidate's
-/// stresses are [`principal_stresses`]`(p, m, …)` bit for bit: the t_i, the two values
-/// k_i can take and the quotients t_i/k, 1/k are formed once for the four sets (the same
-/// operations on the same operands), not once per set.
+/// rounding leaves none exactly consistent, the least violating one (the first of equals).
 fn select(p: &[f64; 3], dc: f64, a: f64, phi: f64, nu: f64) -> (usize, [f64; 3]) {
-    let tr = p[0] + p[1] + p[2];
-    let t = [
-        (1.0 - dc) * ((1.0 + nu) * p[0] - nu * tr),
-        (1.0 - dc) * ((1.0 + nu) * p[1] - nu * tr),
-        (1.0 - dc) * ((1.0 + nu) * p[2] - nu * tr),
-    ];
-    // k_i of a direction outside P (index 0) and in P (index 1).
-    let k_open = a * (1.0 + nu);
-    let k = [k_open + 0.0, k_open + phi];
-    let inv = [1.0 / k[0], 1.0 / k[1]];
-    let quotient = [t.map(|ti| ti / k[0]), t.map(|ti| ti / k[1])];
+    let terms = SetTerms::new(p, dc, a, phi, nu);
     let mut best = (0, [0.0; 3], f64::INFINITY);
     for m in 0..=3 {
-        let in_p = |i: usize| usize::from(i < m);
-        let (mut num, mut inv_sum) = (0.0, 0.0);
-        for i in 0..3 {
-            num += quotient[in_p(i)][i];
-            inv_sum += inv[in_p(i)];
-        }
-        let sum = num / (1.0 - a * nu * inv_sum);
-        let s: [f64; 3] = std::array::from_fn(|i| (t[i] + a * nu * sum) / k[in_p(i)]);
-        let mut violation = 0.0f64;
-        for (i, v) in s.iter().enumerate() {
-            violation += if i < m { (-v).max(0.0) } else { v.max(0.0) };
-        }
+        let (s, violation) = terms.candidate(m);
         if violation == 0.0 {
             return (m, s);
         }
@@ -270,6 +287,50 @@ fn select(p: &[f64; 3], dc: f64, a: f64, phi: f64, nu: f64) -> (usize, [f64; 3])
         }
     }
     (best.0, best.1)
+}
+
+/// The coefficients of the linear map g_k(λ) = ((1 − D_c)(1+ν)λ + C)/k of the consistent
+/// stress (one point, or one per lane): (1 − D_c)(1+ν), C = AνS − (1 − D_c)ν tr σ̂ with S
+/// the sum of the principal stresses `sig`, and k₀ = A(1+ν) (k of a direction outside P).
+#[inline(always)]
+pub(super) fn map_coefficients<T: Lane>(
+    p: &[T; 3],
+    sig: &[T; 3],
+    dc: T,
+    a: T,
+    nu: f64,
+) -> (T, T, T) {
+    let one_minus_dc = T::splat(1.0) - dc;
+    let nu_t = T::splat(nu);
+    let tr = p[0] + p[1] + p[2];
+    let s = sig[0] + sig[1] + sig[2];
+    let a1 = one_minus_dc * T::splat(1.0 + nu);
+    let offset = a * nu_t * s - one_minus_dc * nu_t * tr;
+    (a1, offset, a * T::splat(1.0 + nu))
+}
+
+/// A = 1/(1 − s₀D_t) and φ = 1/(1 − D_t) − A of the consistent rule (one point, or one per
+/// lane). D_t = 1 (e^(−y) underflows) is the limit of an open crack carrying no tension;
+/// D_t is capped so that A and φ stay finite (the stress changes by ~1e-12 of σ̄).
+#[inline(always)]
+pub(super) fn recovery_factors<T: Lane>(dt: T, s0: f64) -> (T, T) {
+    let one = T::splat(1.0);
+    let dt = dt.min(T::splat(1.0 - 1e-12));
+    let a = one / (one - T::splat(s0) * dt);
+    (a, one / (one - dt) - a)
+}
+
+/// g_k applied to σ̄ as a whole: c₁ σ̄ + c₀ I with c₁ = (1 − D_c)(1+ν)/k, c₀ = C/k.
+#[inline(always)]
+pub(super) fn linear_map<T: Lane>(eff: &[T; 6], c1: T, c0: T) -> [T; 6] {
+    [
+        c1 * eff[0] + c0,
+        c1 * eff[1] + c0,
+        c1 * eff[2] + c0,
+        c1 * eff[3],
+        c1 * eff[4],
+        c1 * eff[5],
+    ]
 }
 
 #[cfg(test)]

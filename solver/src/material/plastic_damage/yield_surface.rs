@@ -5,6 +5,8 @@
 //!
 //! written on the principal effective stresses σ̂₁ ≥ σ̂₂ ≥ σ̂₃.
 
+use crate::element::lanes::Lane;
+
 /// Smallest effective tensile cohesion used in β (Pa), guards the division when the
 /// effective tensile strength has softened to nothing.
 const MIN_COHESION: f64 = 1e-6;
@@ -51,18 +53,26 @@ impl YieldSurface {
     /// with σ̂_max (γ ≥ 0), so σ̂_max ≤ min(Ī₁/3 + (2/3)√(3J̄₂), 0) bounds F.
     #[inline]
     pub fn surely_inside_compressed(&self, i1: f64, q: f64, ct: f64, cc: f64) -> bool {
-        self.value_from(i1, q, (i1 / 3.0 + 2.0 * q / 3.0).min(0.0), ct, cc) <= 0.0
+        self.value_from(i1, q, largest_value_bound(i1, q).min(0.0), ct, cc) <= 0.0
     }
 }
 
 /// Ī₁ and √(3J̄₂) of a stress-like Voigt vector (tensor shear components).
 #[inline]
-pub fn invariants(s: &[f64; 6]) -> (f64, f64) {
+pub fn invariants<T: Lane>(s: &[T; 6]) -> (T, T) {
     let i1 = s[0] + s[1] + s[2];
-    let m = i1 / 3.0;
+    let m = i1 / T::splat(3.0);
     let (a, b, c) = (s[0] - m, s[1] - m, s[2] - m);
-    let ss = a * a + b * b + c * c + 2.0 * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]);
-    (i1, (1.5 * ss).sqrt())
+    let ss = a * a + b * b + c * c + T::splat(2.0) * (s[3] * s[3] + s[4] * s[4] + s[5] * s[5]);
+    (i1, (T::splat(1.5) * ss).sqrt())
+}
+
+/// The upper bound Ī₁/3 + (2/3)√(3J̄₂) of the largest principal value from the invariants
+/// `i1`, `q` of [`invariants`] (one point, or one per lane): every principal value is ≤ 0
+/// when it is.
+#[inline]
+pub fn largest_value_bound<T: Lane>(i1: T, q: T) -> T {
+    i1 / T::splat(3.0) + T::splat(2.0) * q / T::splat(3.0)
 }
 
 /// √(3 J₂) of principal stresses.

@@ -1,0 +1,215 @@
+//! The consistent stiffness recovery ([`recovery::consistent_stress_of`], the module doc of
+//! `recovery.rs`) of eight effective stresses at once, one per lane (issue 11): the
+//! isotropic and pure-compression cases, the principal values, the choice of the tension
+//! set P and the linear map g_k(σ̄) as lane arithmetic; the one eigenprojector of a lone
+//! direction and the rare split of a close pair (every eigenvector) lane by lane with the
+//! scalar functions. Each lane performs the scalar rule's IEEE operations in the same order,
+//! so the stresses are those of [`recovery::consistent_stress_of`] bit for bit (tested
+//! below and through the element kernels).
+
+use super::principal::{eigenprojector, principal_values_lanes};
+use super::recovery::{self, linear_map, map_coefficients, recovery_factors, SetTerms};
+use super::yield_surface::{invariants, largest_value_bound};
+use crate::element::lanes::{F64s, VoigtLanes, LANES};
+use crate::material::Voigt;
+
+/// Nominal stresses of the consistent rule for the effective stresses `eff` (lane l: point
+/// l), tensile and compressive damage `d_t`, `d_c` (D_t, D_c of eq. 24 per lane), recovery
+/// floor `s0` and Poisson's ratio `nu`: lane l is
+/// `consistent_stress_of(Classified::new(eff_l), d_t[l], d_c[l], s0, nu)` bit for bit for
+/// every lane in `wanted` (the others are unspecified, and cost no libm call).
+#[inline(always)]
+pub fn consistent_stress_lanes(
+    eff: &VoigtLanes,
+    d_t: F64s,
+    d_c: F64s,
+    (s0, nu): (f64, f64),
+    wanted: &[bool; LANES],
+) -> VoigtLanes {
+    let (a, phi) = recovery_factors(d_t, s0);
+    let one_minus_dc = F64s::splat(1.0) - d_c;
+    // σ = (1 − D_c)(1 − s₀D_t) σ̄ where φ is NaN or ≤ 0 (D_t = 0 or s₀ = 1) and in pure
+    // compression by the invariant bound of `Classified::surely_compressed`.
+    let mut iso_stress = [F64s::ZERO; 6];
+    for i in 0..6 {
+        iso_stress[i] = eff[i] * one_minus_dc / a;
+    }
+    let (i1, q) = invariants(eff);
+    let bound = largest_value_bound(i1, q);
+    let mut spectral = [false; LANES];
+    let mut any = false;
+    for l in 0..LANES {
+        // (A NaN bound is not `compressed`: the spectral branch, as in the scalar rule.)
+        let isotropic = phi[l].is_nan() || phi[l] <= 0.0;
+        let compressed = bound[l] <= 0.0;
+        spectral[l] = wanted[l] && !isotropic && !compressed;
+        any |= spectral[l];
+    }
+    if !any {
+        return iso_stress;
+    }
+    let p = principal_values_lanes(eff, &spectral);
+    let (m_set, sig) = select_lanes(&p, d_c, a, phi, nu);
+    let (a1, offset, k0) = map_coefficients(&p, &sig, d_c, a, nu);
+    let k_tension = k0 + phi;
+    // k of the map g_k per lane: every direction open (m = 0, or the lone tensile n₁), or
+    // every one in tension (m = 3, or the lone compressive n₃).
+    let mut k = k0;
+    for l in 0..LANES {
+        if m_set[l] >= 2 {
+            k[l] = k_tension[l];
+        }
+    }
+    let mut out = linear_map(eff, a1 / k, offset / k);
+    for l in 0..LANES {
+        if !spectral[l] {
+            for (o, iso) in out.iter_mut().zip(&iso_stress) {
+                o[l] = iso[l];
+            }
+            continue;
+        }
+        let pl = [p[0][l], p[1][l], p[2][l]];
+        let top_isolated = pl[0] - pl[1] >= pl[1] - pl[2];
+        let lone = match (m_set[l], top_isolated) {
+            (0, _) | (3, _) => None,
+            (1, true) => Some(0),
+            (2, false) => Some(2),
+            _ => {
+                // The close pair split between the sets: the scalar rule (every
+                // eigenvector), from the same principal values.
+                let eff_l = lane_of(eff, l);
+                let mut classified = recovery::Classified::new(&eff_l).with_values(pl);
+                let sig_l = recovery::consistent_stress_of(&mut classified, d_t[l], d_c[l], s0, nu);
+                for (o, v) in out.iter_mut().zip(sig_l) {
+                    o[l] = v;
+                }
+                continue;
+            }
+        };
+        if let Some(i) = lone {
+            let eff_l = lane_of(eff, l);
+            let w = sig[i][l] - (a1[l] * pl[i] + offset[l]) / k[l];
+            let nn = eigenprojector(&eff_l, pl[i]);
+            for (o, v) in out.iter_mut().zip(nn) {
+                o[l] += w * v;
+            }
+        }
+    }
+    out
+}
+
+/// [`recovery`]'s `select` lane-wise: the tension set P (its size m per lane) and the
+/// principal stresses of each lane, the first set whose stresses have the signs it assumes
+/// or, when rounding leaves none, the least violating one (the first of equals). The four
+/// candidate sets ([`SetTerms`]) are formed in lanes for every lane.
+#[inline(always)]
+fn select_lanes(
+    p: &[F64s; 3],
+    dc: F64s,
+    a: F64s,
+    phi: F64s,
+    nu: f64,
+) -> ([usize; LANES], [F64s; 3]) {
+    let terms = SetTerms::new(p, dc, a, phi, nu);
+    let mut chosen = [usize::MAX; LANES];
+    // (m, violation) of the least violating set so far; none while every violation is
+    // NaN, where the scalar function returns m = 0 with zero stresses.
+    let mut best: [Option<(usize, f64)>; LANES] = [None; LANES];
+    let mut stresses = [[F64s::ZERO; 3]; 4];
+    for m in 0..=3 {
+        let (s, violation) = terms.candidate(m);
+        for l in 0..LANES {
+            if chosen[l] != usize::MAX {
+                continue;
+            }
+            if violation[l] == 0.0 {
+                chosen[l] = m;
+            } else if violation[l] < best[l].map_or(f64::INFINITY, |b| b.1) {
+                best[l] = Some((m, violation[l]));
+            }
+        }
+        stresses[m] = s;
+    }
+    let mut m_set = [0usize; LANES];
+    let mut sig = [F64s::ZERO; 3];
+    for l in 0..LANES {
+        m_set[l] = match (chosen[l], best[l]) {
+            (usize::MAX, Some((m, _))) => m,
+            (usize::MAX, None) => continue,
+            (m, _) => m,
+        };
+        for i in 0..3 {
+            sig[i][l] = stresses[m_set[l]][i][l];
+        }
+    }
+    (m_set, sig)
+}
+
+/// The Voigt vector of lane `l`.
+#[inline(always)]
+fn lane_of(v: &VoigtLanes, l: usize) -> Voigt {
+    [v[0][l], v[1][l], v[2][l], v[3][l], v[4][l], v[5][l]]
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::test_random::Lcg;
+
+    /// Random effective stresses of every sign pattern (with double and nearly double
+    /// principal values, exact zeros, pure compression), damage from none to full: each
+    /// lane is the scalar rule bit for bit, and every branch of the lane function is taken.
+    #[test]
+    fn lanes_are_the_scalar_consistent_stress_bit_for_bit() {
+        let mut rng = Lcg(0x1a4e_5c0d_0001);
+        let mut lone_or_split = 0;
+        for draw in 0..4000 {
+            let mag = 10f64.powf(2.0 + 5.0 * rng.next());
+            let eff: VoigtLanes = std::array::from_fn(|i| {
+                F64s(std::array::from_fn(|l| match (draw + l) % 6 {
+                    // isotropic, pure compression, a double root, a zero stress
+                    0 if i < 3 => -mag,
+                    0 => 0.0,
+                    1 if i < 3 => -mag * (1.0 + rng.next()),
+                    1 => 0.1 * mag * rng.sym(),
+                    2 if i < 2 => mag,
+                    2 => 0.0,
+                    3 => 0.0,
+                    _ => mag * rng.sym(),
+                }))
+            });
+            let s0 = [0.0, 0.2, 1.0, 0.7][draw % 4];
+            let nu = 0.1 + 0.3 * rng.next();
+            let d_t = F64s(std::array::from_fn(|l| {
+                [rng.next(), 0.0, 1.0, 1.0 - 1e-13][(draw + l) % 4]
+            }));
+            let d_c = F64s(std::array::from_fn(|_| 0.9 * rng.next()));
+            let wanted = std::array::from_fn(|l| (draw + l) % 7 != 0);
+            let got = consistent_stress_lanes(&eff, d_t, d_c, (s0, nu), &wanted);
+            for l in 0..LANES {
+                if !wanted[l] {
+                    continue;
+                }
+                let eff_l: Voigt = std::array::from_fn(|i| eff[i][l]);
+                let want = recovery::consistent_stress_of(
+                    &mut recovery::Classified::new(&eff_l),
+                    d_t[l],
+                    d_c[l],
+                    s0,
+                    nu,
+                );
+                let got_l: Voigt = std::array::from_fn(|i| got[i][l]);
+                assert_eq!(
+                    got_l.map(f64::to_bits),
+                    want.map(f64::to_bits),
+                    "draw {draw}, lane {l}: {eff_l:?} d_t {} d_c {} s0 {s0}",
+                    d_t[l],
+                    d_c[l]
+                );
+                let mixed = eff_l[..3].iter().any(|&v| v > 0.0) && d_t[l] > 0.0 && s0 < 1.0;
+                lone_or_split += usize::from(mixed);
+            }
+        }
+        assert!(lone_or_split > 1000, "{lone_or_split} mixed lanes");
+    }
+}

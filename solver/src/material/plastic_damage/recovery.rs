@@ -185,20 +185,9 @@ pub fn consistent_stress_of(c: &mut Classified, dt: f64, dc: f64, s0: f64, nu: f
     // principal_stresses):
     // one linear map g_k(λ) = ((1 − D_c)(1+ν)λ + C)/k per set, applied to σ̄ as a whole.
     let (a1, offset, k0) = map_coefficients(&p, &sig, dc, a, nu);
-    // The direction whose value is farther from the middle one ([`Spectral::with_values`]'s
-    // choice): its eigenvector, alone, is accurate to rounding over the gap.
-    let top_isolated = p[0] - p[1] >= p[1] - p[2];
-    let (k, lone) = match (m, top_isolated) {
-        // Every kᵢ equal: σ = g_k(σ̄).
-        (0, _) => (k0, None),
-        (3, _) => (k0 + phi, None),
-        // The isolated direction alone in its set (n₁ in tension, or n₃ in compression),
-        // the other two sharing a map g_k: σ = g_k(σ̄) + (σᵢ − g_k(σ̂ᵢ)) nᵢ⊗nᵢ — one
-        // eigenvector, no plane basis.
-        (1, true) => (k0, Some(0)),
-        (2, false) => (k0 + phi, Some(2)),
-        // The close pair split between the sets: each of its directions is needed.
-        _ => {
+    let (k, lone) = match set_map(m, &p) {
+        SetMap::Linear { tension, lone } => (if tension { k0 + phi } else { k0 }, lone),
+        SetMap::Split => {
             let sp = Spectral::with_values(eff, p);
             let sig = principal_stresses(&sp.values, m, dc, a, phi, nu);
             return sp.stress_voigt(&sig);
@@ -208,13 +197,64 @@ pub fn consistent_stress_of(c: &mut Classified, dt: f64, dc: f64, s0: f64, nu: f
     let c0 = offset / k;
     let mut out = linear_map(eff, c1, c0);
     if let Some(i) = lone {
-        let w = sig[i] - (a1 * p[i] + offset) / k;
-        let nn = eigenprojector(eff, p[i]);
-        for (o, v) in out.iter_mut().zip(nn) {
-            *o += w * v;
+        let correction = lone_correction(eff, &p, i, sig[i], (a1, offset, k));
+        for (o, v) in out.iter_mut().zip(correction) {
+            *o += v;
         }
     }
     out
+}
+
+/// How the consistent stress of a tension set is formed from σ̄ ([`set_map`]).
+pub(super) enum SetMap {
+    /// σ = g_k(σ̄), plus (σᵢ − g_k(σ̂ᵢ)) nᵢ⊗nᵢ for the `lone` direction i when there is one
+    /// ([`lone_correction`]); k is that of a direction in tension when `tension`.
+    Linear { tension: bool, lone: Option<usize> },
+    /// The close pair split between the sets: each of its directions is needed.
+    Split,
+}
+
+/// The form of the consistent stress for the tension set of the first `m` directions of the
+/// sorted principal values `p`: every kᵢ equal (m = 0 or 3) is one map g_k; the direction
+/// whose value is farther from the middle one ([`Spectral::with_values`]'s choice, whose
+/// eigenvector alone is accurate to rounding over the gap) alone in its set — n₁ in tension
+/// or n₃ in compression — is g_k of the other two plus one eigenvector, no plane basis.
+#[inline(always)]
+pub(super) fn set_map(m: usize, p: &[f64; 3]) -> SetMap {
+    let top_isolated = p[0] - p[1] >= p[1] - p[2];
+    match (m, top_isolated) {
+        (0, _) => SetMap::Linear {
+            tension: false,
+            lone: None,
+        },
+        (3, _) => SetMap::Linear {
+            tension: true,
+            lone: None,
+        },
+        (1, true) => SetMap::Linear {
+            tension: false,
+            lone: Some(0),
+        },
+        (2, false) => SetMap::Linear {
+            tension: true,
+            lone: Some(2),
+        },
+        _ => SetMap::Split,
+    }
+}
+
+/// (σᵢ − g_k(σ̂ᵢ)) nᵢ⊗nᵢ of the lone direction `i` (principal value `p[i]` of σ̄ = `eff`,
+/// principal stress `sig_i`) for g_k(λ) = (a₁λ + C)/k, `(a1, offset, k)` = (a₁, C, k).
+#[inline(always)]
+pub(super) fn lone_correction(
+    eff: &Voigt,
+    p: &[f64; 3],
+    i: usize,
+    sig_i: f64,
+    (a1, offset, k): (f64, f64, f64),
+) -> Voigt {
+    let w = sig_i - (a1 * p[i] + offset) / k;
+    eigenprojector(eff, p[i]).map(|v| w * v)
 }
 
 /// What [`select`] forms once for its four candidate sets (one point, or one per lane):

@@ -7,8 +7,11 @@
 //! so the stresses are those of [`recovery::consistent_stress_of`] bit for bit (tested
 //! below and through the element kernels).
 
-use super::principal::{eigenprojector, principal_values_lanes};
-use super::recovery::{self, linear_map, map_coefficients, recovery_factors, SetTerms};
+use super::principal::principal_values_lanes;
+use super::recovery::{
+    self, linear_map, lone_correction, map_coefficients, recovery_factors, set_map, SetMap,
+    SetTerms,
+};
 use super::yield_surface::{invariants, largest_value_bound};
 use crate::element::lanes::{F64s, VoigtLanes, LANES};
 use crate::material::Voigt;
@@ -52,46 +55,50 @@ pub fn consistent_stress_lanes(
     let (m_set, sig) = select_lanes(&p, d_c, a, phi, nu);
     let (a1, offset, k0) = map_coefficients(&p, &sig, d_c, a, nu);
     let k_tension = k0 + phi;
-    // k of the map g_k per lane: every direction open (m = 0, or the lone tensile n₁), or
-    // every one in tension (m = 3, or the lone compressive n₃).
+    // Per lane: k of its map g_k, its lone direction, or the split pair.
     let mut k = k0;
-    for l in 0..LANES {
-        if m_set[l] >= 2 {
-            k[l] = k_tension[l];
+    let mut lone = [None; LANES];
+    let mut split = [false; LANES];
+    for l in (0..LANES).filter(|&l| spectral[l]) {
+        match set_map(m_set[l], &[p[0][l], p[1][l], p[2][l]]) {
+            SetMap::Linear { tension, lone: i } => {
+                if tension {
+                    k[l] = k_tension[l];
+                }
+                lone[l] = i;
+            }
+            SetMap::Split => split[l] = true,
         }
     }
     let mut out = linear_map(eff, a1 / k, offset / k);
     for l in 0..LANES {
-        if !spectral[l] {
-            for (o, iso) in out.iter_mut().zip(&iso_stress) {
-                o[l] = iso[l];
-            }
-            continue;
-        }
-        let pl = [p[0][l], p[1][l], p[2][l]];
-        let top_isolated = pl[0] - pl[1] >= pl[1] - pl[2];
-        let lone = match (m_set[l], top_isolated) {
-            (0, _) | (3, _) => None,
-            (1, true) => Some(0),
-            (2, false) => Some(2),
-            _ => {
-                // The close pair split between the sets: the scalar rule (every
-                // eigenvector), from the same principal values.
-                let eff_l = lane_of(eff, l);
-                let mut classified = recovery::Classified::new(&eff_l).with_values(pl);
-                let sig_l = recovery::consistent_stress_of(&mut classified, d_t[l], d_c[l], s0, nu);
-                for (o, v) in out.iter_mut().zip(sig_l) {
-                    o[l] = v;
-                }
-                continue;
-            }
-        };
-        if let Some(i) = lone {
+        let replace = if !spectral[l] {
+            Some(lane_of(&iso_stress, l))
+        } else if split[l] {
+            // The scalar rule (every eigenvector), from the same principal values.
             let eff_l = lane_of(eff, l);
-            let w = sig[i][l] - (a1[l] * pl[i] + offset[l]) / k[l];
-            let nn = eigenprojector(&eff_l, pl[i]);
-            for (o, v) in out.iter_mut().zip(nn) {
-                o[l] += w * v;
+            let pl = [p[0][l], p[1][l], p[2][l]];
+            let mut classified = recovery::Classified::new(&eff_l).with_values(pl);
+            Some(recovery::consistent_stress_of(
+                &mut classified,
+                d_t[l],
+                d_c[l],
+                s0,
+                nu,
+            ))
+        } else {
+            None
+        };
+        if let Some(v) = replace {
+            for (o, v) in out.iter_mut().zip(v) {
+                o[l] = v;
+            }
+        } else if let Some(i) = lone[l] {
+            let pl = [p[0][l], p[1][l], p[2][l]];
+            let map = (a1[l], offset[l], k[l]);
+            let correction = lone_correction(&lane_of(eff, l), &pl, i, sig[i][l], map);
+            for (o, v) in out.iter_mut().zip(correction) {
+                o[l] += v;
             }
         }
     }

@@ -33,6 +33,8 @@ use serde::Deserialize;
 
 use crate::element::groups::SharedMut;
 use crate::element::host_locate::{HostLocator, HostPoint};
+use crate::element::lanes::{run_lane_work, F64s, LaneWork};
+use crate::lanes8;
 use crate::mesh::Mesh;
 
 /// `[[anchors.bars]]`: one bar between two points.
@@ -164,8 +166,9 @@ struct HostBlocks {
     kernel_of: Vec<u32>,
     /// Axial force and trial plastic strain of every kernel at the last pass.
     axial: Vec<(f64, f64)>,
-    /// Forces on the eight nodes of every host at the last pass.
-    host_force: Vec<[[f64; 3]; 8]>,
+    /// Forces on the eight nodes of every host at the last pass, the nodes in lanes
+    /// (component d of node a: `[d][a]`).
+    host_force: Vec<[F64s; 3]>,
     /// Distinct host nodes, ascending, with their entries (host, local node) in ascending
     /// host order: `entry_start[i]..entry_start[i + 1]` (CSR).
     scatter_nodes: Vec<u32>,
@@ -225,7 +228,7 @@ impl HostBlocks {
         blocks.entry = pairs.iter().map(|&(_, h, a)| (h, a)).collect();
         blocks.sum = vec![[0.0; 3]; blocks.scatter_nodes.len()];
         blocks.axial = vec![(0.0, 0.0); kernels.len()];
-        blocks.host_force = vec![[[0.0; 3]; 8]; blocks.host_nodes.len()];
+        blocks.host_force = vec![[F64s::ZERO; 3]; blocks.host_nodes.len()];
         (blocks, kernels)
     }
 }
@@ -575,45 +578,24 @@ impl AnchorBars {
         // plastic strain from them, and its N t (N_a(q) − N_a(p)) added to the host's
         // nodal forces — the additions of a serial loop, in its order.
         {
-            let (kernels, start, host_nodes) = (&self.kernels, &blocks.start, &blocks.host_nodes);
             let plastic = &self.plastic[..nseg];
             let axial = SharedMut(blocks.axial.as_mut_ptr());
+            let (kernels, start, host_nodes) = (&self.kernels, &blocks.start, &blocks.host_nodes);
             blocks
                 .host_force
-                .par_iter_mut()
+                .par_chunks_mut(HOSTS_PER_TASK)
                 .enumerate()
-                .with_min_len(HOSTS_PER_TASK)
-                .for_each(|(h, force)| {
-                    let nodes = &host_nodes[h];
-                    let ue: [[f64; 3]; 8] = std::array::from_fn(|a| u[nodes[a] as usize]);
-                    let mut f = [[0.0; 3]; 8];
-                    for k in start[h] as usize..start[h + 1] as usize {
-                        let s = &kernels[k];
-                        let t = s.t;
-                        let mut du = 0.0;
-                        for a in 0..8 {
-                            let ua = ue[a];
-                            du += s.g[a] * (t[0] * ua[0] + t[1] * ua[1] + t[2] * ua[2]);
-                        }
-                        du -= s.reference;
-                        let (n, ep) = elastic_plastic(
-                            plastic[s.segment as usize],
-                            s.ea,
-                            s.yield_force,
-                            s.pretension,
-                            du / s.length,
-                        );
-                        // SAFETY: kernel k belongs to host h alone (start is ascending),
-                        // and every host is visited once.
-                        unsafe { *axial.at(k) = (n, ep) };
-                        let v = [n * t[0], n * t[1], n * t[2]];
-                        for a in 0..8 {
-                            for d in 0..3 {
-                                f[a][d] += v[d] * s.g[a];
-                            }
-                        }
-                    }
-                    *force = f;
+                .for_each(|(c, out)| {
+                    run_lane_work(HostForces {
+                        kernels,
+                        start,
+                        host_nodes,
+                        plastic,
+                        u,
+                        axial,
+                        first: c * HOSTS_PER_TASK,
+                        out,
+                    })
                 });
         }
         // 2. Every host node's sum over its hosts in ascending order.
@@ -630,9 +612,9 @@ impl AnchorBars {
                 .for_each(|(i, sum)| {
                     let mut f = f_in[scatter_nodes[i] as usize];
                     for &(h, a) in &entry[entry_start[i] as usize..entry_start[i + 1] as usize] {
-                        let v = host_force[h as usize][a as usize];
+                        let v = &host_force[h as usize];
                         for d in 0..3 {
-                            f[d] += v[d];
+                            f[d] += v[d][a as usize];
                         }
                     }
                     *sum = f;
@@ -935,11 +917,73 @@ impl AnchorBars {
     }
 }
 
+/// Phase 1 of [`AnchorBars::add_internal_forces`] for the hosts `first..first +
+/// out.len()`, compiled for the CPU's widest vectors ([`run_lane_work`]): per host, its
+/// nodes' displacements with the eight nodes in lanes, then per segment k, in order,
+/// w_a = t·u_a for the eight nodes at once, the elongation Σ_a g_a w_a summed over a in
+/// order, N and the trial εᵖ ([`elastic_plastic`]), and N t_d g_a added to the host's
+/// forces, component d with the nodes in lanes. Each lane performs the IEEE operations of
+/// the scalar loop (`du += g_a (t₀u_a0 + t₁u_a1 + t₂u_a2)` from 0, `f_ad += (N t_d) g_a`
+/// from 0) in its order, so the forces are the same bits.
+struct HostForces<'a> {
+    kernels: &'a [SegmentKernel],
+    start: &'a [u32],
+    host_nodes: &'a [[u32; 8]],
+    plastic: &'a [f64],
+    u: &'a [[f64; 3]],
+    /// Axial force and trial εᵖ per kernel; this pass writes its hosts' kernels only.
+    axial: SharedMut<(f64, f64)>,
+    first: usize,
+    out: &'a mut [[F64s; 3]],
+}
+
+impl LaneWork for HostForces<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn run(self) {
+        for (j, force) in self.out.iter_mut().enumerate() {
+            let h = self.first + j;
+            let nodes = &self.host_nodes[h];
+            let u = self.u;
+            let ux = lanes8!(a => u[nodes[a] as usize][0]);
+            let uy = lanes8!(a => u[nodes[a] as usize][1]);
+            let uz = lanes8!(a => u[nodes[a] as usize][2]);
+            let mut f = [F64s::ZERO; 3];
+            for k in self.start[h] as usize..self.start[h + 1] as usize {
+                let s = &self.kernels[k];
+                let t = s.t;
+                let g = F64s(s.g);
+                let w = F64s::splat(t[0]) * ux + F64s::splat(t[1]) * uy + F64s::splat(t[2]) * uz;
+                let gw = g * w;
+                let mut du = 0.0;
+                for a in 0..8 {
+                    du += gw[a];
+                }
+                du -= s.reference;
+                let (n, ep) = elastic_plastic(
+                    self.plastic[s.segment as usize],
+                    s.ea,
+                    s.yield_force,
+                    s.pretension,
+                    du / s.length,
+                );
+                // SAFETY: kernel k belongs to host h alone (start is ascending), and every
+                // host is visited once.
+                unsafe { *self.axial.at(k) = (n, ep) };
+                for d in 0..3 {
+                    f[d] = f[d] + F64s::splat(n * t[d]) * g;
+                }
+            }
+            *force = f;
+        }
+    }
+}
+
 /// Elastic–perfectly plastic axial force for axial strain `eps` from the committed plastic
 /// strain `ep`, stiffness `ea`, yield force `yield_force` and pretension `n0`: N = n0 +
 /// EA (ε − εᵖ) if |N| ≤ f_y A, else ±f_y A with εᵖ grown by the excess (module docs).
 /// Returns (N, trial εᵖ).
-#[inline]
+#[inline(always)]
 fn elastic_plastic(ep: f64, ea: f64, yield_force: f64, n0: f64, eps: f64) -> (f64, f64) {
     let trial = n0 + ea * (eps - ep);
     if trial.abs() <= yield_force {

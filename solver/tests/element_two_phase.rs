@@ -7,6 +7,10 @@
 //! those of the one-phase pass bit for bit, on 1 and 2 threads. The same block checks the
 //! explicit core's in-place material states (`PointStates::set_in_place`) against
 //! buffered ones (old and new buffers, swapped at the end of the step).
+//!
+//! The variants with three groups interleaved element by element (both integrations, two
+//! strengths, each colouring block holding elements of all three) check that every node
+//! receives the groups' forces in the one-phase pass's order: colour, then group.
 
 mod common;
 
@@ -24,6 +28,8 @@ struct Variant {
     subcycled: bool,
     /// Material states updated in place (the explicit core's way), else buffered.
     in_place: bool,
+    /// Three groups interleaved: `integration` and the other rule in two concretes.
+    mixed: bool,
 }
 
 /// 16 × 8 × 6 elements (768: three colouring blocks of 256), the first 8 columns 0.5 m
@@ -64,13 +70,38 @@ fn simulation(v: Variant, two_phase: bool) -> Simulation {
     }
     let elastic = Elastic::new("concrete", 25e9, 0.17, 2450.0).unwrap();
     let material = common::damaging_concrete(elastic);
-    let setup = RegionSetup {
+    let mut setups = vec![RegionSetup {
         region: "concrete".to_string(),
         material,
         integration: v.integration,
         hourglass: 0.05,
-    };
-    let mut model = Model::new(mesh, &[setup], "two-phase test").unwrap();
+    }];
+    if v.mixed {
+        // Regions by a pattern that mixes them inside every colouring block.
+        for (e, r) in mesh.element_region.iter_mut().enumerate() {
+            *r = ((e * 7 / 5) % 3) as u16;
+        }
+        mesh.region_names = vec!["concrete".into(), "other_rule".into(), "weaker".into()];
+        let other = match v.integration {
+            Integration::Full => Integration::OnePoint,
+            Integration::OnePoint => Integration::Full,
+        };
+        let weaker = Elastic::new("weaker", 20e9, 0.2, 2400.0).unwrap();
+        setups.push(RegionSetup {
+            region: "other_rule".to_string(),
+            material: common::damaging_concrete(elastic),
+            integration: other,
+            hourglass: 0.05,
+        });
+        setups.push(RegionSetup {
+            region: "weaker".to_string(),
+            material: common::damaging_concrete(weaker),
+            integration: v.integration,
+            hourglass: 0.08,
+        });
+    }
+    let mut model = Model::new(mesh, &setups, "two-phase test").unwrap();
+    assert_eq!(model.groups.len(), setups.len());
     let base = model.mesh.node_sets["concrete.zmin"].clone();
     model.constraints.fix(&base, 0b111);
     if v.damping {
@@ -125,13 +156,15 @@ fn run(v: Variant, two_phase: bool, threads: usize) -> (Vec<u64>, Vec<u64>, Vec<
         let mut sim = simulation(v, two_phase);
         sim.run_steps(60).unwrap();
         // The committed states after step 60 (before a pass that, in place, commits).
-        let damage: Vec<u64> = sim.model.groups[0]
-            .element_damage_fields()
-            .unwrap()
+        let damage: Vec<u64> = sim
+            .model
+            .groups
             .iter()
+            .flat_map(|g| g.element_damage_fields().unwrap())
             .flatten()
             .map(|x| x.to_bits())
             .collect();
+
         sim.internal_forces();
         let bits = |a: &[[f64; 3]]| a.iter().flatten().map(|x| x.to_bits()).collect();
         (bits(&sim.u), damage, bits(sim.internal_force()))
@@ -144,11 +177,19 @@ fn variants() -> impl Iterator<Item = Variant> {
     [Integration::Full, Integration::OnePoint]
         .into_iter()
         .flat_map(|integration| {
-            [(false, false), (true, false), (false, true)].map(|(damping, subcycled)| Variant {
+            [
+                (false, false, false),
+                (true, false, false),
+                (false, true, false),
+                (false, false, true),
+                (true, false, true),
+            ]
+            .map(|(damping, subcycled, mixed)| Variant {
                 integration,
                 damping,
                 subcycled,
                 in_place: true,
+                mixed,
             })
         })
 }

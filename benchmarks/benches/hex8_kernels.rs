@@ -11,6 +11,11 @@
 //!   share it;
 //! - `hex8_full_plastic_damage/{scalar,lanes}`: both with the plastic-damage model below
 //!   first yield (the never-yielded shortcut, checked in lanes by the lane kernel);
+//!   `.../{scalar,lanes}_cracked`: the same element cracked under the consistent recovery
+//!   and unloaded a little, its eight points damaged (D_t > 0) and inside their surfaces
+//!   (the yielded-elastic branch, `PlasticDamage::yielded_lanes` in lanes: the late
+//!   Yingxiuwan step's concrete). One element evaluated over and over: its branches are
+//!   the same at every iteration, so the row favours branchy code over masked lanes;
 //! - `hex8_one_point_plastic_damage/in_place`: the one-point kernel with the plastic-damage
 //!   model below first yield, its state updated in place, dispatched like the step (the
 //!   Yingxiuwan rock's kernel); `.../lanes_of_8`: eight such elements at once in SIMD lanes
@@ -36,7 +41,7 @@ use dcfm::element::hex8_full_lanes::InternalForce;
 use dcfm::element::hex8_uniform::{self, UniformGeometry};
 use dcfm::element::hex8_uniform_lanes::{LaneKernel, UniformBlock};
 use dcfm::element::lanes::{run_lane_work, F64s, LaneWork, NodalLanes, LANES};
-use dcfm::material::plastic_damage::PlasticDamageParams;
+use dcfm::material::plastic_damage::{PlasticDamageParams, Recovery};
 use dcfm::material::{Elastic, Material, PlasticDamage, PointContext};
 
 /// A distorted 0.25 m hexahedron (node order of `hex8_shape::NODE_XI`), shifted by `s`.
@@ -285,6 +290,140 @@ fn full_lanes(c: &mut Criterion) {
     }
 }
 
+/// `hex8_full_plastic_damage/{scalar,lanes}_cracked` (module docs): the element stretched
+/// in three steps to 30 × [`displacements`] (strains of order 3e-3, twenty times the
+/// cracking strain) under the consistent recovery, then evaluated from that state at the
+/// least unloading, from 30 × down in steps of 0.1, that leaves every point cracked and
+/// inside its surface (the factor is printed).
+fn full_lanes_cracked(c: &mut Criterion) {
+    let ctx = context();
+    let x = coords(0.0);
+    let geo = FullGeometry::new(&x).expect("valid element");
+    let u = displacements(&x);
+    let scaled = |s: f64| u.map(|n| n.map(|v| s * v));
+    let mat = Material::PlasticDamage(Box::new(
+        PlasticDamage::new(
+            "concrete",
+            *material().elastic(),
+            &PlasticDamageParams {
+                recovery: Recovery::Consistent,
+                ..PlasticDamageParams::from_strengths(2.9e6, 13e6, 24.1e6, 100.0, 10e3)
+            },
+        )
+        .expect("valid plastic-damage parameters"),
+    ));
+    let stride = mat.state_len();
+    let mut fresh = vec![0.0; 8 * stride];
+    for p in fresh.chunks_exact_mut(stride) {
+        mat.init_state(p);
+    }
+    let pd = match &mat {
+        Material::PlasticDamage(pd) => pd,
+        _ => unreachable!("built as plastic damage"),
+    };
+    // The element cracked along `field`, and the least unloading (from 30 × down) that
+    // leaves all eight points cracked inside their surfaces: (state, displacements, factor).
+    let crack = |field: &dyn Fn(f64) -> [[f64; 3]; 8]| {
+        let mut f = [[0.0; 3]; 8];
+        let mut old = fresh.clone();
+        let mut new = fresh.clone();
+        for s in [10.0, 20.0, 30.0] {
+            hex8_full::internal_force(&geo, &mat, &field(s), &old, &mut new, &ctx, &mut f);
+            old.copy_from_slice(&new);
+        }
+        (1..=290).map(|k| 30.0 - 0.1 * k as f64).find_map(|s| {
+            hex8_full::internal_force(&geo, &mat, &field(s), &old, &mut new, &ctx, &mut f);
+            (0..8)
+                .all(|g| {
+                    let (o, n) = (&old[g * stride..][..stride], &new[g * stride..][..stride]);
+                    !mat.hardening_moved(o, n) && pd.tensile_damage(o) > 0.0
+                })
+                .then(|| (old.clone(), field(s), s))
+        })
+    };
+    let (old, unloaded, factor) =
+        crack(&scaled).expect("an unloading that stays inside every surface");
+    eprintln!("hex8_full_plastic_damage/*_cracked: unloaded to {factor:.1} × the displacements");
+    // Elements cracked along 64 fields: the bench's field plus a random uniform gradient
+    // of the same size per element (LCG), those that find such an unloading.
+    let mut seed = 0x5eed_c0de_u64;
+    let mut rand = move || {
+        seed = seed
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        (seed >> 11) as f64 / (1u64 << 53) as f64 - 0.5
+    };
+    let varied: Vec<(Vec<f64>, [[f64; 3]; 8])> = (0..64)
+        .filter_map(|_| {
+            let g: [[f64; 3]; 3] = std::array::from_fn(|_| std::array::from_fn(|_| 2e-4 * rand()));
+            let field = |s: f64| {
+                std::array::from_fn(|a| {
+                    std::array::from_fn(|i| {
+                        s * (u[a][i] + g[i][0] * x[a][0] + g[i][1] * x[a][1] + g[i][2] * x[a][2])
+                    })
+                })
+            };
+            crack(&field).map(|(state, u, _)| (state, u))
+        })
+        .collect();
+    eprintln!(
+        "hex8_full_plastic_damage/lanes_cracked_varied: {} elements",
+        varied.len()
+    );
+    let mut new = old.clone();
+    let mut f = [[0.0; 3]; 8];
+    let mut group = c.benchmark_group("hex8_full_plastic_damage");
+    group.throughput(Throughput::Elements(1));
+    group.bench_function("scalar_cracked", |b| {
+        b.iter(|| {
+            hex8_full::internal_force(
+                black_box(&geo),
+                &mat,
+                black_box(&unloaded),
+                &old,
+                &mut new,
+                &ctx,
+                &mut f,
+            );
+            black_box(&f);
+        })
+    });
+    group.bench_function("lanes_cracked", |b| {
+        b.iter(|| {
+            run_lane_work(InternalForce {
+                geo: black_box(&geo),
+                material: &mat,
+                u: black_box(&unloaded),
+                eps0: None,
+                old: &old,
+                new: &mut new,
+                ctx: &ctx,
+                f: &mut f,
+            });
+            black_box(&f);
+        })
+    });
+    group.throughput(Throughput::Elements(varied.len() as u64));
+    group.bench_function("lanes_cracked_varied", |b| {
+        b.iter(|| {
+            for (state, u) in &varied {
+                run_lane_work(InternalForce {
+                    geo: black_box(&geo),
+                    material: &mat,
+                    u: black_box(u),
+                    eps0: None,
+                    old: state,
+                    new: &mut new,
+                    ctx: &ctx,
+                    f: &mut f,
+                });
+                black_box(&f);
+            }
+        })
+    });
+    group.finish();
+}
+
 /// K u of one element through its stiffness matrix, inside pulp's dispatch as in the step.
 struct MatrixForce<'a> {
     k: &'a ElementMatrix,
@@ -452,6 +591,7 @@ criterion_group!(
     one_point,
     full,
     full_lanes,
+    full_lanes_cracked,
     full_matrix,
     one_point_plastic_damage
 );

@@ -231,6 +231,30 @@ fn full(c: &mut Criterion) {
     group.finish();
 }
 
+/// One element's forces with its Gauss points in lanes, dispatched like the step, the
+/// geometry and displacements behind `black_box`.
+fn lanes_force(
+    geo: &FullGeometry,
+    material: &Material,
+    u: &[[f64; 3]; 8],
+    old: &[f64],
+    new: &mut [f64],
+    ctx: &PointContext,
+    f: &mut [[f64; 3]; 8],
+) {
+    run_lane_work(InternalForce {
+        geo: black_box(geo),
+        material,
+        u: black_box(u),
+        eps0: None,
+        old,
+        new,
+        ctx,
+        f,
+    });
+    black_box(f);
+}
+
 fn full_lanes(c: &mut Criterion) {
     let ctx = context();
     let x = coords(0.0);
@@ -273,17 +297,7 @@ fn full_lanes(c: &mut Criterion) {
         group.bench_function(if stride > 0 { "lanes" } else { "single_lanes" }, |b| {
             let mut f = [[0.0; 3]; 8];
             b.iter(|| {
-                run_lane_work(InternalForce {
-                    geo: black_box(&geo),
-                    material: mat,
-                    u: black_box(&u),
-                    eps0: None,
-                    old: &old,
-                    new: &mut new,
-                    ctx: &ctx,
-                    f: &mut f,
-                });
-                black_box(&f);
+                lanes_force(&geo, mat, &u, &old, &mut new, &ctx, &mut f);
             })
         });
         group.finish();
@@ -390,34 +404,14 @@ fn full_lanes_cracked(c: &mut Criterion) {
     });
     group.bench_function("lanes_cracked", |b| {
         b.iter(|| {
-            run_lane_work(InternalForce {
-                geo: black_box(&geo),
-                material: &mat,
-                u: black_box(&unloaded),
-                eps0: None,
-                old: &old,
-                new: &mut new,
-                ctx: &ctx,
-                f: &mut f,
-            });
-            black_box(&f);
+            lanes_force(&geo, &mat, &unloaded, &old, &mut new, &ctx, &mut f);
         })
     });
     group.throughput(Throughput::Elements(varied.len() as u64));
     group.bench_function("lanes_cracked_varied", |b| {
         b.iter(|| {
             for (state, u) in &varied {
-                run_lane_work(InternalForce {
-                    geo: black_box(&geo),
-                    material: &mat,
-                    u: black_box(u),
-                    eps0: None,
-                    old: state,
-                    new: &mut new,
-                    ctx: &ctx,
-                    f: &mut f,
-                });
-                black_box(&f);
+                lanes_force(&geo, &mat, u, state, &mut new, &ctx, &mut f);
             }
         })
     });

@@ -44,8 +44,8 @@ def _ran_every_crosscheck(session) -> tuple[bool, int]:
     reporter = session.config.pluginmanager.get_plugin("terminalreporter")
     stats = reporter.stats if reporter is not None else {}
     root = Path(session.config.rootpath)
-    in_tests = [Path(item.path).resolve() for item in session.items]
-    files = {str(p.relative_to(ROOT)) for p in in_tests if p.is_relative_to(freshness.TESTS_DIR)}
+    collected = (Path(item.path).resolve() for item in session.items)
+    files = {str(p.relative_to(ROOT)) for p in collected if p.is_relative_to(freshness.TESTS_DIR)}
     passed = sum(
         1
         for r in stats.get("passed", [])

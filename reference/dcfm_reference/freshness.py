@@ -22,10 +22,10 @@ import importlib.util
 import json
 import os
 import sys
-import tempfile
 from pathlib import Path
 from typing import Any
 
+from dcfm_reference import record
 from dcfm_reference.paths import CROSSCHECK_DIR, ROOT
 
 FRESH_JSON = CROSSCHECK_DIR / "fresh.json"
@@ -92,13 +92,7 @@ def record_session(inputs: str | None, ran_all: bool, passed: int, exit_ok: bool
     if inputs is None or not ran_all or not exit_ok or inputs != fingerprint():
         FRESH_JSON.unlink(missing_ok=True)
         return
-    doc = {"fingerprint": inputs, "passed": passed}
-    FRESH_JSON.parent.mkdir(parents=True, exist_ok=True)
-    fd, tmp = tempfile.mkstemp(dir=FRESH_JSON.parent, prefix=FRESH_JSON.name, suffix=".tmp")
-    with os.fdopen(fd, "w", encoding="utf-8") as f:
-        json.dump(doc, f, indent=1)
-        f.write("\n")
-    os.replace(tmp, FRESH_JSON)
+    record.write_atomic(FRESH_JSON, {"fingerprint": inputs, "passed": passed})
 
 
 def status() -> tuple[bool, str]:

@@ -101,7 +101,8 @@ def failures(rows: list[dict[str, Any]]) -> list[str]:
     ]
 
 
-def _write_atomic(path: Path, doc: Any) -> None:
+def write_atomic(path: Path, doc: Any) -> None:
+    """Write ``doc`` as JSON to ``path`` through a temporary file and a rename."""
     path.parent.mkdir(parents=True, exist_ok=True)
     fd, tmp = tempfile.mkstemp(dir=path.parent, prefix=path.name, suffix=".tmp")
     with os.fdopen(fd, "w", encoding="utf-8") as f:
@@ -140,7 +141,7 @@ def flush(crosscheck_json: Path, performance_json: Path, commit: str) -> None:
         series_all = [s for s in old_series if s.get("case") not in cases] + _SERIES
         desc = {c: t for c, t in old_desc.items() if c not in cases} | _DESCRIPTIONS
         desc = {c: t for c, t in desc.items() if c in {r["case"] for r in rows}}
-        _write_atomic(crosscheck_json, {"commit": commit, "rows": rows, "series": series_all, "descriptions": desc})
+        write_atomic(crosscheck_json, {"commit": commit, "rows": rows, "series": series_all, "descriptions": desc})
     if _PERFORMANCE:
         rows = _merge(performance_json, _PERFORMANCE, "label")
-        _write_atomic(performance_json, {"commit": commit, "rows": rows})
+        write_atomic(performance_json, {"commit": commit, "rows": rows})

@@ -33,6 +33,19 @@ pub struct Rayleigh {
     pub beta: f64,
 }
 
+/// How the critical step is bounded (`time.stable_step`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum StepBound {
+    /// Each element with its own lumped masses: min over the elements of their own steps
+    /// (the default).
+    #[default]
+    Element,
+    /// The nodal masses shared among the elements by balanced weights
+    /// (`element::shared_mass_step`): still a bound, larger where small elements sit
+    /// among larger ones.
+    SharedMass,
+}
+
 /// The stable time step and the element that limits it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct StableStep {
@@ -133,6 +146,8 @@ pub struct Model {
     pub mass_factor: Vec<f64>,
     /// What the mass scaling did, if the case asked for it.
     pub mass_scaling: Option<crate::mass_scaling::MassScalingSummary>,
+    /// How the critical step is bounded (`time.stable_step`).
+    pub step_bound: StepBound,
 }
 
 impl Model {
@@ -222,6 +237,7 @@ impl Model {
             extra_omega_squared: 0.0,
             mass_factor: Vec::new(),
             mass_scaling: None,
+            step_bound: StepBound::Element,
         };
         model.mass = model.lumped_masses();
         if let Some(n) = model.mass.iter().position(|&m| m.is_nan() || m <= 0.0) {
@@ -279,12 +295,65 @@ impl Model {
                 };
             }
         }
+        if self.step_bound == StepBound::SharedMass {
+            self.shared_mass_step(&mut stable);
+        }
         let folded = self.fold_extra_stiffness(stable.critical);
         if folded != stable.critical {
             stable.critical = folded;
             stable.length = folded * stable.speed;
         }
         stable
+    }
+
+    /// Replace the elements' own bound in `stable` by the shared-mass bound
+    /// (`element::shared_mass_step`) over the same elements, with the model's nodal masses
+    /// (anchor steel included) and free DOFs; kept only where it is the larger step.
+    fn shared_mass_step(&self, stable: &mut StableStep) {
+        use crate::element::groups::GroupGeometry;
+        use crate::element::shared_mass_step::{shared_mass_bound, SharedElement};
+        use crate::element::stiffness::{full_stiffness, uniform_stiffness};
+        let moving = self.moving_elements();
+        let elements: Vec<SharedElement> = moving
+            .iter()
+            .map(|&(g, e)| {
+                let x = self.mesh.element_coords(e);
+                let rho = self.groups[g].material.density() * self.mass_factor_of(e);
+                SharedElement {
+                    conn: self.mesh.elements[e],
+                    own_mass: crate::element::lumped_mass::element_masses(&x, rho),
+                    own_bound: (2.0 / self.element_steps[e]).powi(2),
+                }
+            })
+            .collect();
+        let free: Vec<u8> = self
+            .constraints
+            .constrained
+            .iter()
+            .map(|&c| !c & 0b111)
+            .collect();
+        let stiffness = |i: usize| {
+            let (g, e) = moving[i];
+            let group = &self.groups[g];
+            let le = self.element_location[e].1 as usize;
+            let el = group.material.elastic();
+            match &group.geometry {
+                GroupGeometry::Uniform(set) => uniform_stiffness(set.get(le), el),
+                GroupGeometry::Full(geos) => full_stiffness(&geos[le], el),
+            }
+        };
+        let bound = shared_mass_bound(&elements, &self.mass, &free, stiffness);
+        let dt = 2.0 / bound.omega_squared.sqrt();
+        if dt > stable.critical {
+            let (g, e) = moving[bound.element];
+            let c = self.groups[g].material.elastic().p_wave_speed();
+            *stable = StableStep {
+                critical: dt,
+                element: e,
+                length: dt * c,
+                speed: c,
+            };
+        }
     }
 
     /// The elements the critical step is taken over, as (group, element) in the groups'

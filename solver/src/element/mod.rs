@@ -18,6 +18,7 @@ pub mod hex8_uniform_lanes;
 pub mod host_locate;
 pub mod lanes;
 pub mod lumped_mass;
+pub mod shared_mass_step;
 pub mod stable_step;
 pub mod stiffness;
 pub mod uniform_set;

@@ -179,7 +179,12 @@ pub struct Simulation {
 impl Simulation {
     /// Start from rest (plus the model's initial velocities) with time step `dt`, which
     /// must not exceed `safety` × the critical step (damping included).
-    pub fn new(model: Model, dt: f64, safety: f64) -> Result<Self> {
+    pub fn new(mut model: Model, dt: f64, safety: f64) -> Result<Self> {
+        // The shared-mass bound depends on the nodal masses, which a static stage's
+        // excavation and the anchors' steel change: bound the step of this model.
+        if model.step_bound == crate::model::StepBound::SharedMass {
+            model.refresh_stable_step();
+        }
         let dt = model.time_step(Some(dt), safety)?;
         Ok(Self::new_unchecked(model, dt))
     }

@@ -1,0 +1,150 @@
+//! The shared-mass bound on the critical step (`time.stable_step = "shared_mass"`,
+//! `element::shared_mass_step`): on graded, distorted meshes it must stay at or above the
+//! largest eigenvalue of the assembled M⁻¹K (computed here densely: an independent
+//! reference), at or below the elements' own bound, and the same on 1 and 2 threads.
+
+use dcfm::element::groups::GroupGeometry;
+use dcfm::element::stiffness::{full_stiffness, uniform_stiffness};
+use dcfm::element::Integration;
+use dcfm::material::{Elastic, Material};
+use dcfm::mesh::BoxMeshSpec;
+use dcfm::model::{Model, RegionSetup, StepBound};
+use nalgebra::{DMatrix, SymmetricEigen};
+
+/// A 4 × 3 × 3 box graded along every axis (planes moved to give elements from 0.25 m to
+/// 1.6 m), its interior nodes jittered, and its base fixed when `fixed_base`.
+fn graded_box(integration: Integration, fixed_base: bool) -> Model {
+    let mut mesh = BoxMeshSpec::single("rock", [0.0; 3], [4.0, 3.0, 3.0], [4, 3, 3])
+        .build("t")
+        .unwrap();
+    let planes_x = [0.0, 0.25, 1.85, 2.6, 4.0];
+    let planes_y = [0.0, 1.0, 1.3, 3.0];
+    let planes_z = [0.0, 0.4, 1.5, 3.0];
+    for (k, p) in mesh.coords.iter_mut().enumerate() {
+        let (i, j, l) = (
+            p[0].round() as usize,
+            p[1].round() as usize,
+            p[2].round() as usize,
+        );
+        let jitter = |s: f64| 0.04 * ((k as f64 * s).sin());
+        let interior = i > 0 && i < 4 && j > 0 && j < 3 && l > 0 && l < 3;
+        p[0] = planes_x[i] + if interior { jitter(1.3) } else { 0.0 };
+        p[1] = planes_y[j] + if interior { jitter(2.1) } else { 0.0 };
+        p[2] = planes_z[l] + if interior { jitter(0.7) } else { 0.0 };
+    }
+    let setup = RegionSetup {
+        region: "rock".into(),
+        material: Material::Elastic(Elastic::new("r", 20e9, 0.25, 2700.0).unwrap()),
+        integration,
+        hourglass: 0.05,
+    };
+    let mut model = Model::new(mesh, &[setup], "t").unwrap();
+    if fixed_base {
+        let base: Vec<u32> = (0..model.mesh.n_nodes() as u32)
+            .filter(|&n| model.mesh.coords[n as usize][2] == 0.0)
+            .collect();
+        model.constraints.fix(&base, 0b111);
+        model.refresh_stable_step();
+    }
+    model
+}
+
+/// ω²_max of the assembled M⁻¹K on the free DOFs, by a dense symmetric eigensolve.
+fn assembled_omega_squared(model: &Model) -> f64 {
+    let n = model.mesh.n_nodes();
+    let free: Vec<usize> = (0..3 * n)
+        .filter(|&i| model.constraints.constrained[i / 3] & (1 << (i % 3)) == 0)
+        .collect();
+    let mut index = vec![usize::MAX; 3 * n];
+    for (p, &i) in free.iter().enumerate() {
+        index[i] = p;
+    }
+    let mut k = DMatrix::<f64>::zeros(free.len(), free.len());
+    for group in &model.groups {
+        let el = group.material.elastic();
+        for (le, conn) in group.conn.iter().enumerate() {
+            let ke = match &group.geometry {
+                GroupGeometry::Uniform(set) => uniform_stiffness(set.get(le), el),
+                GroupGeometry::Full(geos) => full_stiffness(&geos[le], el),
+            };
+            for a in 0..24 {
+                for b in 0..24 {
+                    let (i, j) = (
+                        index[3 * conn[a / 3] as usize + a % 3],
+                        index[3 * conn[b / 3] as usize + b % 3],
+                    );
+                    if i != usize::MAX && j != usize::MAX {
+                        k[(i, j)] += ke[a][b];
+                    }
+                }
+            }
+        }
+    }
+    let s = DMatrix::from_fn(free.len(), free.len(), |p, q| {
+        let (mi, mj) = (model.mass[free[p] / 3], model.mass[free[q] / 3]);
+        0.5 * (k[(p, q)] + k[(q, p)]) / (mi * mj).sqrt()
+    });
+    SymmetricEigen::new(s)
+        .eigenvalues
+        .iter()
+        .copied()
+        .fold(0.0, f64::max)
+}
+
+fn critical_steps(mut model: Model) -> (f64, f64, f64) {
+    model.step_bound = StepBound::Element;
+    model.refresh_stable_step();
+    let element = model.stable.critical;
+    model.step_bound = StepBound::SharedMass;
+    model.refresh_stable_step();
+    let shared = model.stable.critical;
+    let exact = 2.0 / assembled_omega_squared(&model).sqrt();
+    (element, shared, exact)
+}
+
+#[test]
+fn the_shared_mass_step_is_a_bound_and_no_smaller_than_the_elements_own() {
+    for integration in [Integration::Full, Integration::OnePoint] {
+        for fixed_base in [false, true] {
+            let (element, shared, exact) = critical_steps(graded_box(integration, fixed_base));
+            let label = format!("{integration:?}, fixed base {fixed_base}");
+            eprintln!(
+                "{label}: element {element:.4e} s, shared {shared:.4e} s, exact {exact:.4e} s"
+            );
+            // A bound: never above the assembled system's critical step.
+            assert!(
+                shared <= exact * (1.0 + 1e-12),
+                "{label}: shared-mass step {shared:e} above the exact critical step {exact:e}"
+            );
+            // Never below the elements' own bound, which it refines.
+            assert!(shared >= element, "{label}: {shared:e} < {element:e}");
+            // On this graded mesh (a 0.25 m layer between 1.6 m cells) sharing gains
+            // at least 10 % of the step.
+            assert!(
+                shared >= 1.1 * element,
+                "{label}: shared {shared:e} against the element bound {element:e} \
+                 (exact {exact:e})"
+            );
+        }
+    }
+}
+
+#[test]
+fn the_shared_mass_step_does_not_depend_on_the_thread_count() {
+    let steps: Vec<f64> = [1, 2]
+        .iter()
+        .map(|&threads| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            pool.install(|| {
+                let mut model = graded_box(Integration::Full, true);
+                model.step_bound = StepBound::SharedMass;
+                model.refresh_stable_step();
+                model.stable.critical
+            })
+        })
+        .collect();
+    assert_eq!(steps[0].to_bits(), steps[1].to_bits());
+}

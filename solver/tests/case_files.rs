@@ -87,6 +87,28 @@ fn errors_name_file_field_value_and_expectation() {
         e.contains("exceeds the stable step") && e.contains("element"),
         "{e}"
     );
+    let e = err(&SMALL.replace("end = 0.002", "end = 0.002\nstable_step = \"global\""));
+    assert!(
+        e.contains("case.toml: time.stable_step = \"global\"") && e.contains("\"shared_mass\""),
+        "{e}"
+    );
+    let e = err(&SMALL.replace(
+        "end = 0.002",
+        "end = 0.002\nstable_step = \"shared_mass\"\nsubcycling = { max_level = 2 }",
+    ));
+    assert!(
+        e.contains("time.stable_step = \"shared_mass\"") && e.contains("time.subcycling"),
+        "{e}"
+    );
+    // Accepted, and never a smaller step than the elements' own bound.
+    let own = parse_case(SMALL, "case.toml", Path::new(".")).unwrap();
+    let shared = parse_case(
+        &SMALL.replace("end = 0.002", "end = 0.002\nstable_step = \"shared_mass\""),
+        "case.toml",
+        Path::new("."),
+    )
+    .unwrap();
+    assert!(shared.dt >= own.dt, "{} < {}", shared.dt, own.dt);
     let e = err(&SMALL.replace("material = \"rock\"", "material = \"granite\""));
     assert!(e.contains("regions[0].material = \"granite\""), "{e}");
     let e = err(&SMALL.replace("young = 20e9", "youngs = 20e9"));

@@ -175,6 +175,13 @@ fn main() -> ExitCode {
                 );
                 let limits =
                     dcfm::step_limits::step_limits(m, &[1.1, 1.25, 1.5], &[10, 100, 1000, 10000]);
+                if m.step_bound == dcfm::model::StepBound::SharedMass {
+                    say!(
+                        "          bound with the nodal masses shared among the elements (time.stable_step = \"shared_mass\"): {:.3}× the elements' own bound {:.4e} s, which the lines below refer to",
+                        m.stable.critical / limits.critical,
+                        limits.critical
+                    );
+                }
                 for band in &limits.bands {
                     let regions: Vec<String> = band
                         .by_region

@@ -65,6 +65,8 @@ pub struct RunSummary {
     /// Length of the last step (s): `dt`, or the shortened step that lands on `end`.
     pub last_dt: f64,
     pub critical_dt: f64,
+    /// How the critical step was bounded (`time.stable_step`): "element" or "shared_mass".
+    pub stable_step: &'static str,
     pub limiting_element: usize,
     /// The case's `time.end` (s).
     pub end_requested: f64,
@@ -862,6 +864,10 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
         dt,
         last_dt,
         critical_dt: sim.model.critical_step_with_damping(),
+        stable_step: match sim.model.step_bound {
+            dcfm::model::StepBound::Element => "element",
+            dcfm::model::StepBound::SharedMass => "shared_mass",
+        },
         limiting_element: sim.model.stable.element,
         end_requested: end,
         end_time: sim.time,

@@ -74,6 +74,11 @@ pub struct TimeSection {
     /// `case::build::time::mass_scaling_settings`.
     #[serde(default)]
     pub mass_scaling: Option<toml::Value>,
+    /// How the critical step is bounded: `"element"` (default, each element with its own
+    /// lumped masses) or `"shared_mass"` (`element::shared_mass_step`); checked by
+    /// `case::build::time::step_bound`.
+    #[serde(default)]
+    pub stable_step: Option<String>,
 }
 
 /// Default step budget of `[time] max_steps`.

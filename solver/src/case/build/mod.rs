@@ -149,6 +149,16 @@ fn build(
     let static_plan =
         static_stage::build_static(&model, file.static_stage.as_ref(), &file.output, label)?;
     // Every constraint is known now: the stable step from the elements that move.
+    model.step_bound = time::step_bound(&file.time, label)?;
+    if model.step_bound == crate::model::StepBound::SharedMass && subcycling.is_some() {
+        return Err(DcfmError::invalid(
+            label,
+            "time.stable_step",
+            "\"shared_mass\"",
+            "\"element\" with time.subcycling: the levels are taken from each element's \
+             own step, not from a bound on the whole mesh",
+        ));
+    }
     model.refresh_stable_step();
     let dt = model
         .time_step(file.time.dt, file.time.safety)

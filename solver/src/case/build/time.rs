@@ -38,6 +38,22 @@ pub(super) fn check_time(section: &TimeSection, label: &str) -> Result<u64> {
     }
 }
 
+/// `time.stable_step`: `"element"` (the default) or `"shared_mass"`.
+pub(super) fn step_bound(section: &TimeSection, label: &str) -> Result<crate::model::StepBound> {
+    use crate::model::StepBound;
+    match section.stable_step.as_deref() {
+        None | Some("element") => Ok(StepBound::Element),
+        Some("shared_mass") => Ok(StepBound::SharedMass),
+        Some(other) => Err(DcfmError::invalid(
+            label,
+            "time.stable_step",
+            format!("\"{other}\""),
+            "\"element\" (each element with its own lumped masses) or \"shared_mass\" \
+             (the nodal masses shared among the elements)",
+        )),
+    }
+}
+
 /// The `max_level` of `time.subcycling`: `None` for `"off"` or no entry, else a whole
 /// number from 1 to [`crate::stage::subcycling::MAX_LEVEL`] given as `{ max_level = N }`.
 pub(super) fn subcycling_level(section: &TimeSection, label: &str) -> Result<Option<u8>> {

@@ -10,6 +10,8 @@
 //!       fully integrated elements bounded at the default 0.9 h/c_p
 //!   (c) selective mass scaling (w13_mass_scaling.rs): a thin slab's step lifted to its
 //!       neighbours', stable there, the added mass transmitting a pulse as a point mass
+//!   (d) the shared-mass bound (w13_shared_mass_step.rs): at most the exact critical step
+//!       of a graded mesh, stable where the elements' own bound refuses
 //! ```
 //!
 //! Reference: docs/verification_references.md §W13 (single-element bound 0.775 h/c_p; uniform mesh stable up
@@ -97,8 +99,17 @@ pub fn uniform_mesh_run(integration: Integration, courant: f64, steps: usize) ->
         model.constraints.fix(&nodes, 0b111);
     }
     let h_over_c = 1.0 / Elastic::new("rock", 20e9, 0.25, 2700.0)?.p_wave_speed();
-    let mut sim = Simulation::new_unchecked(model, courant * h_over_c);
-    let mut seed = 12345u64;
+    kinetic_growth(
+        Simulation::new_unchecked(model, courant * h_over_c),
+        12345,
+        steps,
+    )
+}
+
+/// Give the free DOFs of `sim` random velocities in [-0.5, 0.5) from `seed` (a 64-bit LCG)
+/// and run `steps` undamped steps; returns the ratio of the largest to the first step's
+/// kinetic energy, or the error that stopped the run.
+pub fn kinetic_growth(mut sim: Simulation, mut seed: u64, steps: usize) -> Result<f64> {
     for (i, v) in sim.v.iter_mut().enumerate() {
         if sim.model.constraints.constrained[i] != 0 {
             continue;
@@ -166,5 +177,6 @@ pub fn run() -> Result<CaseOutput> {
         SOURCE,
     );
     super::w13_mass_scaling::checks(&mut check)?;
+    super::w13_shared_mass_step::checks(&mut check)?;
     Ok(check.finish().into())
 }

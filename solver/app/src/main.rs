@@ -78,6 +78,11 @@ enum Command {
         /// End time of the seismic stage (s); default 60.
         #[arg(long)]
         end: Option<f64>,
+        /// How the case bounds its critical step (`time.stable_step`): "element" (each
+        /// element with its own lumped masses) or "shared_mass" (the nodal masses shared
+        /// among the elements: a larger step that is still a bound, docs/case_format.md).
+        #[arg(long, default_value = "element")]
+        stable_step: String,
         /// Output directory.
         #[arg(long, default_value = "yingxiuwan")]
         out: PathBuf,
@@ -109,6 +114,7 @@ fn main() -> ExitCode {
             variant,
             measure,
             end,
+            stable_step,
             out,
         } => dcfm_app::mesh_cmd::run_mesh_command(
             &model,
@@ -116,6 +122,7 @@ fn main() -> ExitCode {
                 variant: &variant,
                 measure: &measure,
                 end,
+                stable_step: &stable_step,
                 out: &out,
             },
         ),

@@ -15,6 +15,7 @@ use dcfm::mesh::generators::yingxiuwan::{
     benches, case_toml, geometry, CaseSpec, Measures, Timing, Variant, DURATION,
 };
 use dcfm::mesh::gmsh_write::prepare_gmsh_export;
+use dcfm::model::StepBound;
 
 use crate::output::{write_atomic, write_atomic_with};
 
@@ -40,6 +41,9 @@ pub struct MeshRequest<'a> {
     pub measure: &'a str,
     /// End time of the seismic stage (s); default 60.
     pub end: Option<f64>,
+    /// How the written case bounds its critical step (`time.stable_step`): "element" or
+    /// "shared_mass".
+    pub stable_step: &'a str,
     pub out: &'a Path,
 }
 
@@ -65,6 +69,19 @@ pub fn mesh_yingxiuwan(req: &MeshRequest) -> Result<MeshOutput> {
             ),
         )
     })?;
+    let stable_step = match req.stable_step {
+        "element" => StepBound::Element,
+        "shared_mass" => StepBound::SharedMass,
+        other => {
+            return Err(DcfmError::invalid(
+                "command line",
+                "--stable-step",
+                other,
+                "\"element\" (each element with its own lumped masses) or \"shared_mass\" \
+                 (the nodal masses shared among the elements)",
+            ))
+        }
+    };
     let end = req.end.unwrap_or(DURATION);
     if !(end.is_finite() && end > 0.0) {
         return Err(DcfmError::invalid(
@@ -111,6 +128,7 @@ pub fn mesh_yingxiuwan(req: &MeshRequest) -> Result<MeshOutput> {
             checkpoint_every: 0,
         },
         end,
+        stable_step,
     };
     write_atomic(&case_file, case_toml(&spec).as_bytes())?;
     // The model's stable step (safety factor and damping included), then the step that

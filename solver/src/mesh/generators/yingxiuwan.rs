@@ -246,6 +246,8 @@ pub struct CaseSpec {
     pub timing: Timing,
     /// End time of the seismic stage (s).
     pub end: f64,
+    /// How the critical step is bounded (`time.stable_step`).
+    pub stable_step: crate::model::StepBound,
 }
 
 /// The case file of `spec`.
@@ -276,6 +278,9 @@ end = {end:?}
         variant = spec.variant.name(),
         end = spec.end,
     );
+    if spec.stable_step == crate::model::StepBound::SharedMass {
+        s += "stable_step = \"shared_mass\"      # nodal masses shared among the elements (docs/case_format.md)\n";
+    }
     if let Some(dt) = spec.timing.dt {
         s += &format!("dt = {dt:e}                 # frames every {FRAME_INTERVAL} s exactly\n");
     }

@@ -11,30 +11,43 @@ use dcfm::mesh::BoxMeshSpec;
 use dcfm::model::{Model, RegionSetup, StepBound};
 use nalgebra::{DMatrix, SymmetricEigen};
 
-/// A 4 × 3 × 3 box graded along every axis (planes moved to give elements from 0.25 m to
-/// 1.6 m), its interior nodes jittered, and its base fixed when `fixed_base`.
-fn graded_box(integration: Integration, fixed_base: bool) -> Model {
-    let mut mesh = BoxMeshSpec::single("rock", [0.0; 3], [4.0, 3.0, 3.0], [4, 3, 3])
+/// A box whose cells have the widths `widths` along each axis, its interior nodes moved by
+/// up to `jitter` m, Poisson's ratio `nu`, and its base fixed when `fixed_base`.
+fn box_model(
+    widths: [&[f64]; 3],
+    jitter: f64,
+    nu: f64,
+    integration: Integration,
+    fixed_base: bool,
+) -> Model {
+    let cells = widths.map(|w| w.len());
+    let extent = cells.map(|n| n as f64);
+    let mut mesh = BoxMeshSpec::single("rock", [0.0; 3], extent, cells)
         .build("t")
         .unwrap();
-    let planes_x = [0.0, 0.25, 1.85, 2.6, 4.0];
-    let planes_y = [0.0, 1.0, 1.3, 3.0];
-    let planes_z = [0.0, 0.4, 1.5, 3.0];
+    let planes = widths.map(|w| {
+        std::iter::once(0.0)
+            .chain(w.iter().scan(0.0, |x, &h| {
+                *x += h;
+                Some(*x)
+            }))
+            .collect::<Vec<f64>>()
+    });
     for (k, p) in mesh.coords.iter_mut().enumerate() {
-        let (i, j, l) = (
-            p[0].round() as usize,
-            p[1].round() as usize,
-            p[2].round() as usize,
-        );
-        let jitter = |s: f64| 0.04 * ((k as f64 * s).sin());
-        let interior = i > 0 && i < 4 && j > 0 && j < 3 && l > 0 && l < 3;
-        p[0] = planes_x[i] + if interior { jitter(1.3) } else { 0.0 };
-        p[1] = planes_y[j] + if interior { jitter(2.1) } else { 0.0 };
-        p[2] = planes_z[l] + if interior { jitter(0.7) } else { 0.0 };
+        let index: [usize; 3] = std::array::from_fn(|d| p[d].round() as usize);
+        let interior = (0..3).all(|d| index[d] > 0 && index[d] < cells[d]);
+        for (d, scale) in [1.3, 2.1, 0.7].into_iter().enumerate() {
+            let moved = if interior {
+                jitter * (k as f64 * scale).sin()
+            } else {
+                0.0
+            };
+            p[d] = planes[d][index[d]] + moved;
+        }
     }
     let setup = RegionSetup {
         region: "rock".into(),
-        material: Material::Elastic(Elastic::new("r", 20e9, 0.25, 2700.0).unwrap()),
+        material: Material::Elastic(Elastic::new("r", 20e9, nu, 2700.0).unwrap()),
         integration,
         hourglass: 0.05,
     };
@@ -47,6 +60,18 @@ fn graded_box(integration: Integration, fixed_base: bool) -> Model {
         model.refresh_stable_step();
     }
     model
+}
+
+/// A 4 × 3 × 3 box graded along every axis (elements from 0.25 m to 1.6 m), its interior
+/// nodes jittered, and its base fixed when `fixed_base`.
+fn graded_box(integration: Integration, fixed_base: bool) -> Model {
+    box_model(
+        [&[0.25, 1.6, 0.75, 1.4], &[1.0, 0.3, 1.7], &[0.4, 1.1, 1.5]],
+        0.04,
+        0.25,
+        integration,
+        fixed_base,
+    )
 }
 
 /// ω²_max of the assembled M⁻¹K on the free DOFs, by a dense symmetric eigensolve.
@@ -147,4 +172,31 @@ fn the_shared_mass_step_does_not_depend_on_the_thread_count() {
         })
         .collect();
     assert_eq!(steps[0].to_bits(), steps[1].to_bits());
+}
+
+proptest::proptest! {
+    #![proptest_config(proptest::prelude::ProptestConfig::with_cases(100))]
+
+    /// On random graded boxes (2–4 cells per axis of 0.2–2 m, interior nodes jittered,
+    /// ν from 0.05 to 0.45, either integration, base fixed or free) the shared-mass step
+    /// stays between the elements' own bound and the exact critical step.
+    #[test]
+    fn the_shared_mass_step_lies_between_the_elements_bound_and_the_exact_step(
+        wx in proptest::collection::vec(0.2f64..2.0, 2..=4),
+        wy in proptest::collection::vec(0.2f64..2.0, 2..=4),
+        wz in proptest::collection::vec(0.2f64..2.0, 2..=4),
+        jitter in 0.0f64..0.05,
+        nu in 0.05f64..0.45,
+        full in proptest::bool::ANY,
+        fixed_base in proptest::bool::ANY,
+    ) {
+        let integration = if full { Integration::Full } else { Integration::OnePoint };
+        let (element, shared, exact) =
+            critical_steps(box_model([&wx, &wy, &wz], jitter, nu, integration, fixed_base));
+        proptest::prop_assert!(
+            shared <= exact * (1.0 + 1e-12),
+            "shared-mass step {shared:e} above the exact critical step {exact:e}"
+        );
+        proptest::prop_assert!(shared >= element, "{shared:e} < the elements' {element:e}");
+    }
 }

@@ -17,6 +17,7 @@
 pub mod boundary;
 pub mod case;
 pub mod contact;
+pub mod dense_spectrum;
 pub mod element;
 pub mod error;
 pub mod fnv;

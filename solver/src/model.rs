@@ -46,6 +46,29 @@ pub enum StepBound {
     SharedMass,
 }
 
+impl StepBound {
+    /// What a case or command line may give, with what each means (for errors).
+    pub const CHOICES: &'static str = "\"element\" (each element with its own lumped masses) or \
+         \"shared_mass\" (the nodal masses shared among the elements)";
+
+    /// The bound named `name` (`time.stable_step`, `--stable-step`), if there is one.
+    pub fn parse(name: &str) -> Option<Self> {
+        match name {
+            "element" => Some(Self::Element),
+            "shared_mass" => Some(Self::SharedMass),
+            _ => None,
+        }
+    }
+
+    /// The name [`StepBound::parse`] reads back.
+    pub fn name(self) -> &'static str {
+        match self {
+            Self::Element => "element",
+            Self::SharedMass => "shared_mass",
+        }
+    }
+}
+
 /// The stable time step and the element that limits it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct StableStep {
@@ -310,9 +333,7 @@ impl Model {
     /// (`element::shared_mass_step`) over the same elements, with the model's nodal masses
     /// (anchor steel included) and free DOFs; kept only where it is the larger step.
     fn shared_mass_step(&self, stable: &mut StableStep) {
-        use crate::element::groups::GroupGeometry;
         use crate::element::shared_mass_step::{shared_mass_bound, SharedElement};
-        use crate::element::stiffness::{full_stiffness, uniform_stiffness};
         let moving = self.moving_elements();
         let elements: Vec<SharedElement> = moving
             .iter()
@@ -334,13 +355,7 @@ impl Model {
             .collect();
         let stiffness = |i: usize| {
             let (g, e) = moving[i];
-            let group = &self.groups[g];
-            let le = self.element_location[e].1 as usize;
-            let el = group.material.elastic();
-            match &group.geometry {
-                GroupGeometry::Uniform(set) => uniform_stiffness(set.get(le), el),
-                GroupGeometry::Full(geos) => full_stiffness(&geos[le], el),
-            }
+            self.groups[g].element_stiffness(self.element_location[e].1 as usize)
         };
         let bound = shared_mass_bound(&elements, &self.mass, &free, stiffness);
         let dt = 2.0 / bound.omega_squared.sqrt();

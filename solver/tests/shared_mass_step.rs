@@ -1,15 +1,14 @@
 //! The shared-mass bound on the critical step (`time.stable_step = "shared_mass"`,
 //! `element::shared_mass_step`): on graded, distorted meshes it must stay at or above the
-//! largest eigenvalue of the assembled M⁻¹K (computed here densely: an independent
-//! reference), at or below the elements' own bound, and the same on 1 and 2 threads.
+//! largest eigenvalue of the assembled M⁻¹K (`dcfm::dense_spectrum`, a dense eigensolve:
+//! an independent reference), at or below the elements' own bound, and the same on 1 and
+//! 2 threads.
 
-use dcfm::element::groups::GroupGeometry;
-use dcfm::element::stiffness::{full_stiffness, uniform_stiffness};
+use dcfm::dense_spectrum::omega_max_squared;
 use dcfm::element::Integration;
 use dcfm::material::{Elastic, Material};
 use dcfm::mesh::BoxMeshSpec;
 use dcfm::model::{Model, RegionSetup, StepBound};
-use nalgebra::{DMatrix, SymmetricEigen};
 
 /// A box whose cells have the widths `widths` along each axis, its interior nodes moved by
 /// up to `jitter` m, Poisson's ratio `nu`, and its base fixed when `fixed_base`.
@@ -74,48 +73,6 @@ fn graded_box(integration: Integration, fixed_base: bool) -> Model {
     )
 }
 
-/// ω²_max of the assembled M⁻¹K on the free DOFs, by a dense symmetric eigensolve.
-fn assembled_omega_squared(model: &Model) -> f64 {
-    let n = model.mesh.n_nodes();
-    let free: Vec<usize> = (0..3 * n)
-        .filter(|&i| model.constraints.constrained[i / 3] & (1 << (i % 3)) == 0)
-        .collect();
-    let mut index = vec![usize::MAX; 3 * n];
-    for (p, &i) in free.iter().enumerate() {
-        index[i] = p;
-    }
-    let mut k = DMatrix::<f64>::zeros(free.len(), free.len());
-    for group in &model.groups {
-        let el = group.material.elastic();
-        for (le, conn) in group.conn.iter().enumerate() {
-            let ke = match &group.geometry {
-                GroupGeometry::Uniform(set) => uniform_stiffness(set.get(le), el),
-                GroupGeometry::Full(geos) => full_stiffness(&geos[le], el),
-            };
-            for a in 0..24 {
-                for b in 0..24 {
-                    let (i, j) = (
-                        index[3 * conn[a / 3] as usize + a % 3],
-                        index[3 * conn[b / 3] as usize + b % 3],
-                    );
-                    if i != usize::MAX && j != usize::MAX {
-                        k[(i, j)] += ke[a][b];
-                    }
-                }
-            }
-        }
-    }
-    let s = DMatrix::from_fn(free.len(), free.len(), |p, q| {
-        let (mi, mj) = (model.mass[free[p] / 3], model.mass[free[q] / 3]);
-        0.5 * (k[(p, q)] + k[(q, p)]) / (mi * mj).sqrt()
-    });
-    SymmetricEigen::new(s)
-        .eigenvalues
-        .iter()
-        .copied()
-        .fold(0.0, f64::max)
-}
-
 fn critical_steps(mut model: Model) -> (f64, f64, f64) {
     model.step_bound = StepBound::Element;
     model.refresh_stable_step();
@@ -123,7 +80,7 @@ fn critical_steps(mut model: Model) -> (f64, f64, f64) {
     model.step_bound = StepBound::SharedMass;
     model.refresh_stable_step();
     let shared = model.stable.critical;
-    let exact = 2.0 / assembled_omega_squared(&model).sqrt();
+    let exact = 2.0 / omega_max_squared(&model).sqrt();
     (element, shared, exact)
 }
 

@@ -69,19 +69,14 @@ pub fn mesh_yingxiuwan(req: &MeshRequest) -> Result<MeshOutput> {
             ),
         )
     })?;
-    let stable_step = match req.stable_step {
-        "element" => StepBound::Element,
-        "shared_mass" => StepBound::SharedMass,
-        other => {
-            return Err(DcfmError::invalid(
-                "command line",
-                "--stable-step",
-                other,
-                "\"element\" (each element with its own lumped masses) or \"shared_mass\" \
-                 (the nodal masses shared among the elements)",
-            ))
-        }
-    };
+    let stable_step = StepBound::parse(req.stable_step).ok_or_else(|| {
+        DcfmError::invalid(
+            "command line",
+            "--stable-step",
+            req.stable_step,
+            StepBound::CHOICES,
+        )
+    })?;
     let end = req.end.unwrap_or(DURATION);
     if !(end.is_finite() && end > 0.0) {
         return Err(DcfmError::invalid(

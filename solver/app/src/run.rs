@@ -864,10 +864,7 @@ pub fn run_case(case: Case, opts: &RunOptions) -> Result<RunSummary> {
         dt,
         last_dt,
         critical_dt: sim.model.critical_step_with_damping(),
-        stable_step: match sim.model.step_bound {
-            dcfm::model::StepBound::Element => "element",
-            dcfm::model::StepBound::SharedMass => "shared_mass",
-        },
+        stable_step: sim.model.step_bound.name(),
         limiting_element: sim.model.stable.element,
         end_requested: end,
         end_time: sim.time,

@@ -90,12 +90,6 @@ impl UniformSet {
         self.shape_of.first().map(|&s| &self.shapes[s as usize])
     }
 
-    /// Geometry of element `i`.
-    #[inline]
-    pub fn get(&self, i: usize) -> &UniformGeometry {
-        &self.shapes[self.shape_of[i] as usize]
-    }
-
     /// The elements' geometries, in element order.
     pub fn iter(&self) -> impl ExactSizeIterator<Item = &UniformGeometry> + '_ {
         self.shape_of.iter().map(|&s| &self.shapes[s as usize])

@@ -14,10 +14,7 @@
 //! elements (docs/verification_references.md §W13); the exact ω_max is the independent
 //! reference. Tolerance: (1) none beyond round-off (1e-12); (2), (3) pass/fail.
 
-use nalgebra::DMatrix;
-
-use dcfm::element::groups::GroupGeometry;
-use dcfm::element::stiffness::full_stiffness;
+use dcfm::dense_spectrum::omega_max_squared;
 use dcfm::element::Integration;
 use dcfm::material::{Elastic, Material};
 use dcfm::mesh::BoxMeshSpec;
@@ -64,46 +61,6 @@ fn graded_box(bound: StepBound) -> Result<Model> {
     Ok(model)
 }
 
-/// 2/ω_max of the assembled M⁻¹K on the free DOFs (dense symmetric eigensolve).
-fn exact_critical_step(model: &Model) -> f64 {
-    let n = model.mesh.n_nodes();
-    let free: Vec<usize> = (0..3 * n)
-        .filter(|&i| model.constraints.constrained[i / 3] & (1 << (i % 3)) == 0)
-        .collect();
-    let mut index = vec![usize::MAX; 3 * n];
-    for (p, &i) in free.iter().enumerate() {
-        index[i] = p;
-    }
-    let mut k = DMatrix::<f64>::zeros(free.len(), free.len());
-    for group in &model.groups {
-        let GroupGeometry::Full(geos) = &group.geometry else {
-            continue;
-        };
-        for (conn, geo) in group.conn.iter().zip(geos) {
-            let ke = full_stiffness(geo, group.material.elastic());
-            for a in 0..24 {
-                let i = index[3 * conn[a / 3] as usize + a % 3];
-                for b in 0..24 {
-                    let j = index[3 * conn[b / 3] as usize + b % 3];
-                    if i != usize::MAX && j != usize::MAX {
-                        k[(i, j)] += ke[a][b];
-                    }
-                }
-            }
-        }
-    }
-    let s = DMatrix::from_fn(free.len(), free.len(), |p, q| {
-        let (mp, mq) = (model.mass[free[p] / 3], model.mass[free[q] / 3]);
-        0.5 * (k[(p, q)] + k[(q, p)]) / (mp * mq).sqrt()
-    });
-    let wmax2 = s
-        .symmetric_eigen()
-        .eigenvalues
-        .iter()
-        .fold(0.0f64, |a, &b| a.max(b));
-    2.0 / wmax2.sqrt()
-}
-
 /// Largest over initial kinetic energy over `steps` undamped steps of `dt` from random
 /// velocities, through the driver's checked constructor (`safety` 1); the error if the
 /// driver refuses the step or the run goes unstable.
@@ -121,7 +78,7 @@ pub fn checks(check: &mut Check) -> Result<()> {
     let own = graded_box(StepBound::Element)?;
     let shared = graded_box(StepBound::SharedMass)?;
     let (dt_own, dt_shared) = (own.stable.critical, shared.stable.critical);
-    let exact = exact_critical_step(&shared);
+    let exact = 2.0 / omega_max_squared(&shared).sqrt();
     check.within(
         "graded box: shared-mass step / exact 2/ω_max of the assembled M⁻¹K (a bound: ≤ 1)",
         0.0,

@@ -42,15 +42,15 @@ pub(super) fn check_time(section: &TimeSection, label: &str) -> Result<u64> {
 pub(super) fn step_bound(section: &TimeSection, label: &str) -> Result<crate::model::StepBound> {
     use crate::model::StepBound;
     match section.stable_step.as_deref() {
-        None | Some("element") => Ok(StepBound::Element),
-        Some("shared_mass") => Ok(StepBound::SharedMass),
-        Some(other) => Err(DcfmError::invalid(
-            label,
-            "time.stable_step",
-            format!("\"{other}\""),
-            "\"element\" (each element with its own lumped masses) or \"shared_mass\" \
-             (the nodal masses shared among the elements)",
-        )),
+        None => Ok(StepBound::Element),
+        Some(name) => StepBound::parse(name).ok_or_else(|| {
+            DcfmError::invalid(
+                label,
+                "time.stable_step",
+                format!("\"{name}\""),
+                StepBound::CHOICES,
+            )
+        }),
     }
 }
 

@@ -278,8 +278,11 @@ end = {end:?}
         variant = spec.variant.name(),
         end = spec.end,
     );
-    if spec.stable_step == crate::model::StepBound::SharedMass {
-        s += "stable_step = \"shared_mass\"      # nodal masses shared among the elements (docs/case_format.md)\n";
+    if spec.stable_step != crate::model::StepBound::default() {
+        s += &format!(
+            "stable_step = \"{}\"      # docs/case_format.md\n",
+            spec.stable_step.name()
+        );
     }
     if let Some(dt) = spec.timing.dt {
         s += &format!("dt = {dt:e}                 # frames every {FRAME_INTERVAL} s exactly\n");

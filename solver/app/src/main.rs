@@ -4,7 +4,7 @@
 //! dcfm check CASE                       validate, print the model, the stable step, the wall time
 //! dcfm run CASE [--out DIR] [--threads N] [--resume] [--resume-with-changed-case]
 //!               [--allow-long] [--quiet]
-//! dcfm mesh yingxiuwan [--variant full|ci] [--measure LIST] [--end T] [--out DIR]
+//! dcfm mesh yingxiuwan [--variant full|ci] [--measure LIST] [--end T] [--stable-step B] [--out DIR]
 //! dcfm post yingxiuwan RUN_DIR [--case CASE]
 //! dcfm motion FILE… [--format F] [--units U] [--dt DT] [processing flags] [--out DIR] [--plot svg]
 //! ```
@@ -81,8 +81,9 @@ enum Command {
         /// How the case bounds its critical step (`time.stable_step`): "element" (each
         /// element with its own lumped masses) or "shared_mass" (the nodal masses shared
         /// among the elements: a larger step that is still a bound, docs/case_format.md).
-        #[arg(long, default_value = "element")]
-        stable_step: String,
+        /// Default: "shared_mass" for the full variant, "element" for the CI variant.
+        #[arg(long)]
+        stable_step: Option<String>,
         /// Output directory.
         #[arg(long, default_value = "yingxiuwan")]
         out: PathBuf,
@@ -122,7 +123,7 @@ fn main() -> ExitCode {
                 variant: &variant,
                 measure: &measure,
                 end,
-                stable_step: &stable_step,
+                stable_step: stable_step.as_deref(),
                 out: &out,
             },
         ),

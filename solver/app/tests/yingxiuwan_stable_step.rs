@@ -8,7 +8,7 @@ use dcfm::model::StepBound;
 use dcfm::stage::static_stage;
 use dcfm_app::mesh_cmd::{mesh_yingxiuwan, MeshRequest};
 
-fn mesh(dir: &std::path::Path, stable_step: &str) -> dcfm::Result<std::path::PathBuf> {
+fn mesh(dir: &std::path::Path, stable_step: Option<&str>) -> dcfm::Result<std::path::PathBuf> {
     let _ = std::fs::remove_dir_all(dir);
     Ok(mesh_yingxiuwan(&MeshRequest {
         variant: "ci",
@@ -23,8 +23,8 @@ fn mesh(dir: &std::path::Path, stable_step: &str) -> dcfm::Result<std::path::Pat
 #[test]
 fn the_shared_mass_case_takes_a_larger_step_that_the_dynamic_stage_admits() {
     let root = std::env::temp_dir().join(format!("dcfm-yx-step-{}", std::process::id()));
-    let element = load_case(&mesh(&root.join("element"), "element").unwrap()).unwrap();
-    let file = mesh(&root.join("shared"), "shared_mass").unwrap();
+    let element = load_case(&mesh(&root.join("element"), Some("element")).unwrap()).unwrap();
+    let file = mesh(&root.join("shared"), Some("shared_mass")).unwrap();
     let text = std::fs::read_to_string(&file).unwrap();
     assert!(text.contains("stable_step = \"shared_mass\""), "{text}");
     let shared = load_case(&file).unwrap();
@@ -49,10 +49,27 @@ fn the_shared_mass_case_takes_a_larger_step_that_the_dynamic_stage_admits() {
 #[test]
 fn an_unknown_stable_step_is_refused_naming_the_option() {
     let dir = std::env::temp_dir().join(format!("dcfm-yx-step-bad-{}", std::process::id()));
-    let e = mesh(&dir, "global").unwrap_err().to_string();
+    let e = mesh(&dir, Some("global")).unwrap_err().to_string();
     assert!(
         e.contains("--stable-step") && e.contains("global") && e.contains("shared_mass"),
         "{e}"
+    );
+    let _ = std::fs::remove_dir_all(&dir);
+}
+
+#[test]
+fn without_the_option_the_full_case_shares_the_masses_and_the_ci_case_keeps_its_bound() {
+    use dcfm::mesh::generators::yingxiuwan::Variant;
+    use dcfm_app::mesh_cmd::default_step_bound;
+    assert_eq!(default_step_bound(Variant::Full), StepBound::SharedMass);
+    assert_eq!(default_step_bound(Variant::Ci), StepBound::Element);
+    let dir = std::env::temp_dir().join(format!("dcfm-yx-step-default-{}", std::process::id()));
+    let file = mesh(&dir, None).unwrap();
+    let text = std::fs::read_to_string(&file).unwrap();
+    assert!(!text.contains("shared_mass"), "{text}");
+    assert_eq!(
+        load_case(&file).unwrap().model.step_bound,
+        StepBound::Element
     );
     let _ = std::fs::remove_dir_all(&dir);
 }

@@ -19,7 +19,7 @@ fn static_stage_converges_and_bonded_pairs_hold_where_interfaces_meet() {
         variant: "ci",
         measure: "none",
         end: Some(0.1),
-        stable_step: "element",
+        stable_step: None,
         out: &dir,
     })
     .unwrap();

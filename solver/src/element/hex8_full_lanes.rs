@@ -64,7 +64,61 @@ const fn derivative_lanes(points_in_lanes: bool) -> [[F64s; 3]; 8] {
 /// [`FullGeometry::strain`]`(g, u)` bit for bit.
 #[inline(always)]
 pub fn point_strains(geo: &FullGeometry, u: &[[f64; 3]; 8]) -> VoigtLanes {
-    // H_ik = Σ_a u_ai d_ak, accumulated from zero in node order.
+    // H_ik = Σ_a u_ai d_ak, accumulated from zero in node order. Where AVX2 is present,
+    // the same operations in explicit 256-bit vectors, four points at a time: left to the
+    // compiler, the `F64s` arithmetic here kept spilling and packing the wrong dimension
+    // (docs/benchmarks.md, stop 60). Every lane does the same IEEE operations in the same
+    // order either way.
+    #[cfg(target_arch = "x86_64")]
+    if let Some(v3) = pulp::x86::V3::try_new() {
+        use std::arch::x86_64::__m256d;
+        let avx = v3.avx;
+        let halves = |x: F64s| -> [__m256d; 2] { pulp::cast(x.0) };
+        let ji = &geo.jinv;
+        let mut out = [[avx._mm256_setzero_pd(); 2]; 6];
+        for half in 0..2 {
+            let mut h = [[avx._mm256_setzero_pd(); 3]; 3];
+            for (a, ua) in u.iter().enumerate() {
+                let d = &POINT_DERIVATIVES[a];
+                let dk = [halves(d[0])[half], halves(d[1])[half], halves(d[2])[half]];
+                for i in 0..3 {
+                    let uai = avx._mm256_set1_pd(ua[i]);
+                    for k in 0..3 {
+                        h[i][k] = avx._mm256_add_pd(h[i][k], avx._mm256_mul_pd(uai, dk[k]));
+                    }
+                }
+            }
+            let mut j = [[avx._mm256_setzero_pd(); 3]; 3];
+            for r in 0..3 {
+                for c in 0..3 {
+                    j[r][c] = halves(ji[r][c])[half];
+                }
+            }
+            let mut gr = [[avx._mm256_setzero_pd(); 3]; 3];
+            for i in 0..3 {
+                for c in 0..3 {
+                    gr[i][c] = avx._mm256_add_pd(
+                        avx._mm256_add_pd(
+                            avx._mm256_mul_pd(h[i][0], j[0][c]),
+                            avx._mm256_mul_pd(h[i][1], j[1][c]),
+                        ),
+                        avx._mm256_mul_pd(h[i][2], j[2][c]),
+                    );
+                }
+            }
+            out[0][half] = gr[0][0];
+            out[1][half] = gr[1][1];
+            out[2][half] = gr[2][2];
+            out[3][half] = avx._mm256_add_pd(gr[0][1], gr[1][0]);
+            out[4][half] = avx._mm256_add_pd(gr[1][2], gr[2][1]);
+            out[5][half] = avx._mm256_add_pd(gr[2][0], gr[0][2]);
+        }
+        let mut e = [F64s::ZERO; 6];
+        for c in 0..6 {
+            e[c] = F64s(pulp::cast(out[c]));
+        }
+        return e;
+    }
     let mut h = [[F64s::ZERO; 3]; 3];
     for (a, ua) in u.iter().enumerate() {
         let d = &POINT_DERIVATIVES[a];
@@ -101,7 +155,37 @@ pub fn point_forces(geo: &FullGeometry, s: &VoigtLanes) -> [[f64; 3]; 8] {
             w * (sig[i][0] * ji[k][0] + sig[i][1] * ji[k][1] + sig[i][2] * ji[k][2])
         })
     });
-    // f_ai, nodes in lanes, summed over the points in order.
+    // f_ai, nodes in lanes, summed over the points in order; with AVX2 in explicit 256-bit
+    // vectors, four nodes at a time (as in `point_strains`): as a loop of `F64s` the
+    // compiler packed the three components i into one vector instead of the nodes.
+    #[cfg(target_arch = "x86_64")]
+    if let Some(v3) = pulp::x86::V3::try_new() {
+        use std::arch::x86_64::__m256d;
+        let avx = v3.avx;
+        let halves = |x: F64s| -> [__m256d; 2] { pulp::cast(x.0) };
+        let mut lo = [avx._mm256_setzero_pd(); 3];
+        let mut hi = [avx._mm256_setzero_pd(); 3];
+        for (g, d) in NODE_DERIVATIVES.iter().enumerate() {
+            let [d0, d1, d2] = [halves(d[0]), halves(d[1]), halves(d[2])];
+            for i in 0..3 {
+                let p0 = avx._mm256_set1_pd(p[i][0][g]);
+                let p1 = avx._mm256_set1_pd(p[i][1][g]);
+                let p2 = avx._mm256_set1_pd(p[i][2][g]);
+                for (h, acc) in [(0usize, &mut lo[i]), (1, &mut hi[i])] {
+                    let t = avx._mm256_add_pd(
+                        avx._mm256_add_pd(
+                            avx._mm256_mul_pd(d0[h], p0),
+                            avx._mm256_mul_pd(d1[h], p1),
+                        ),
+                        avx._mm256_mul_pd(d2[h], p2),
+                    );
+                    *acc = avx._mm256_add_pd(*acc, t);
+                }
+            }
+        }
+        let f: [F64s; 3] = std::array::from_fn(|i| F64s(pulp::cast([lo[i], hi[i]])));
+        return std::array::from_fn(|a| [f[0][a], f[1][a], f[2][a]]);
+    }
     let mut f = [F64s::ZERO; 3];
     for (g, d) in NODE_DERIVATIVES.iter().enumerate() {
         for i in 0..3 {

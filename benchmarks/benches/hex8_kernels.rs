@@ -40,7 +40,7 @@ use dcfm::element::hex8_full::{self, FullGeometry};
 use dcfm::element::hex8_full_lanes::InternalForce;
 use dcfm::element::hex8_uniform::{self, UniformGeometry};
 use dcfm::element::hex8_uniform_lanes::{LaneKernel, UniformBlock};
-use dcfm::element::lanes::{run_lane_work, F64s, LaneWork, NodalLanes, LANES};
+use dcfm::element::lanes::{run_lane_work, F64s, LaneWork, NodalLanes, Simd, LANES};
 use dcfm::material::plastic_damage::{PlasticDamageParams, Recovery};
 use dcfm::material::{Elastic, Material, PlasticDamage, PointContext};
 
@@ -427,7 +427,7 @@ struct MatrixForce<'a> {
 impl LaneWork for MatrixForce<'_> {
     type Output = [[f64; 3]; 8];
     #[inline(always)]
-    fn run(self) -> [[f64; 3]; 8] {
+    fn run<S: Simd>(self, _simd: S) -> [[f64; 3]; 8] {
         self.k.apply(self.u)
     }
 }
@@ -443,7 +443,7 @@ struct MatrixStream<'a> {
 impl LaneWork for MatrixStream<'_> {
     type Output = ();
     #[inline(always)]
-    fn run(self) {
+    fn run<S: Simd>(self, _simd: S) {
         for nodes in self.conn {
             let ue: [[f64; 3]; 8] = std::array::from_fn(|a| self.us[nodes[a] as usize]);
             let f = self.k.apply(&ue);
@@ -505,7 +505,7 @@ struct OnePointInPlace<'a> {
 impl LaneWork for OnePointInPlace<'_> {
     type Output = bool;
     #[inline(always)]
-    fn run(self) -> bool {
+    fn run<S: Simd>(self, _simd: S) -> bool {
         hex8_uniform::internal_force_in_place(
             self.geo,
             self.material,

@@ -940,7 +940,7 @@ struct HostForces<'a> {
 impl LaneWork for HostForces<'_> {
     type Output = ();
     #[inline(always)]
-    fn run(self) {
+    fn run<S: pulp::Simd>(self, _simd: S) {
         for (j, force) in self.out.iter_mut().enumerate() {
             let h = self.first + j;
             let nodes = &self.host_nodes[h];

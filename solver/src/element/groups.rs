@@ -438,7 +438,7 @@ impl ElementGroup {
                     if lanes {
                         lanes::run_lane_work(work)
                     } else {
-                        work.run()
+                        work.run(pulp::Scalar::new())
                     }
                 });
         }
@@ -533,7 +533,7 @@ impl ElementGroup {
             if lanes {
                 lanes::run_lane_work(work)
             } else {
-                work.run()
+                work.run(pulp::Scalar::new())
             }
         });
     }
@@ -1123,7 +1123,7 @@ impl<'k> Kernel<'k> {
     /// Damping force β K0 v of a fully integrated element `le` into `fd` (zero when
     /// β = 0; the one-point elements' damping is computed in [`Kernel::forces`]).
     #[inline(always)]
-    fn damping(&self, le: usize, fd: &mut [[f64; 3]; 8]) {
+    fn damping<S: pulp::Simd>(&self, simd: S, le: usize, fd: &mut [[f64; 3]; 8]) {
         *fd = [[0.0; 3]; 8];
         if self.beta > 0.0 {
             if let GroupGeometry::Full(g) = self.geometry {
@@ -1131,7 +1131,9 @@ impl<'k> Kernel<'k> {
                 let ve: [[f64; 3]; 8] = std::array::from_fn(|a| self.v[nodes[a] as usize]);
                 if self.lanes {
                     let el = self.material.elastic();
-                    *fd = hex8_full_lanes::damping_force(&g[le], el.lambda, el.mu, &ve, self.beta);
+                    *fd = hex8_full_lanes::damping_force(
+                        simd, &g[le], el.lambda, el.mu, &ve, self.beta,
+                    );
                 } else {
                     damping_force_full(&g[le], self.material, &ve, self.beta, fd);
                 }
@@ -1144,8 +1146,9 @@ impl<'k> Kernel<'k> {
     /// skipped. An `#[inline(always)]` body, so that it is compiled for the instruction
     /// set of the [`lanes::run_lane_work`] that calls it.
     #[inline(always)]
-    fn chunk_forces(
+    fn chunk_forces<S: pulp::Simd>(
         &self,
+        simd: S,
         settings: &ForceSettings<'_>,
         first: usize,
         out: &mut [[[f64; 3]; 8]],
@@ -1176,7 +1179,7 @@ impl<'k> Kernel<'k> {
             };
             let fe = &mut out[le - first];
             let mut fd = [[0.0; 3]; 8];
-            self.forces(le, dt, fe, &mut fd);
+            self.forces(simd, le, dt, fe, &mut fd);
             if self.beta > 0.0 {
                 // SAFETY: element le's entry, written by this call alone.
                 unsafe { *damping.at(le) = fd };
@@ -1188,8 +1191,9 @@ impl<'k> Kernel<'k> {
     /// to `add` (its nodes, internal and damping forces). `#[inline(always)]` like
     /// [`Kernel::chunk_forces`].
     #[inline(always)]
-    fn run_forces(
+    fn run_forces<S: pulp::Simd>(
         &self,
+        simd: S,
         settings: &ForceSettings<'_>,
         run: std::ops::Range<usize>,
         add: &impl Fn(&[u32; 8], &[[f64; 3]; 8], &[[f64; 3]; 8]),
@@ -1210,7 +1214,7 @@ impl<'k> Kernel<'k> {
             if let Some(dt) = settings.element_dt(le) {
                 let mut fe = [[0.0; 3]; 8];
                 let mut fd = [[0.0; 3]; 8];
-                self.forces(le, dt, &mut fe, &mut fd);
+                self.forces(simd, le, dt, &mut fe, &mut fd);
                 add(&self.conn[le], &fe, &fd);
             }
             le += 1;
@@ -1330,7 +1334,14 @@ impl<'k> Kernel<'k> {
     /// Internal force `fe` and damping force `fd` (zero when β = 0) of element `le` over
     /// a step `dt`, its material states written to the pending buffer (or in place).
     #[inline(always)]
-    fn forces(&self, le: usize, dt: f64, fe: &mut [[f64; 3]; 8], fd: &mut [[f64; 3]; 8]) {
+    fn forces<S: pulp::Simd>(
+        &self,
+        simd: S,
+        le: usize,
+        dt: f64,
+        fe: &mut [[f64; 3]; 8],
+        fd: &mut [[f64; 3]; 8],
+    ) {
         let ue = self.displacements(le);
         if let Some(k) = self.matrices.and_then(|m| m.matrix_of(le)) {
             // Linear elastic: no state to update, no damage to mark.
@@ -1378,9 +1389,9 @@ impl<'k> Kernel<'k> {
                 GroupGeometry::Full(g) if self.lanes => {
                     let e0 = self.initial.map(|e0| &e0[8 * le..8 * le + 8]);
                     let moved = hex8_full_lanes::internal_force_in_place(
-                        &g[le], material, &ue, e0, new_s, &ctx, fe,
+                        simd, &g[le], material, &ue, e0, new_s, &ctx, fe,
                     );
-                    self.damping(le, fd);
+                    self.damping(simd, le, fd);
                     Some(moved)
                 }
                 GroupGeometry::Full(_) => None,
@@ -1427,14 +1438,14 @@ impl<'k> Kernel<'k> {
                 let e0 = self.initial.map(|e0| &e0[8 * le..8 * le + 8]);
                 if self.lanes {
                     hex8_full_lanes::internal_force(
-                        &g[le], material, &ue, e0, old_s, new_s, &ctx, fe,
+                        simd, &g[le], material, &ue, e0, old_s, new_s, &ctx, fe,
                     );
                 } else {
                     hex8_full::internal_force_with_initial_strain(
                         &g[le], material, &ue, e0, old_s, new_s, &ctx, fe,
                     );
                 }
-                self.damping(le, fd);
+                self.damping(simd, le, fd);
             }
         }
         self.mark_damage(le, new_s, || {
@@ -1487,9 +1498,9 @@ struct ChunkForces<'w, 'k> {
 impl LaneWork for ChunkForces<'_, '_> {
     type Output = ();
     #[inline(always)]
-    fn run(self) {
+    fn run<S: pulp::Simd>(self, simd: S) {
         self.kernel
-            .chunk_forces(self.settings, self.first, self.out, self.damping)
+            .chunk_forces(simd, self.settings, self.first, self.out, self.damping)
     }
 }
 
@@ -1504,8 +1515,9 @@ struct RunForces<'w, 'k, A> {
 impl<A: Fn(&[u32; 8], &[[f64; 3]; 8], &[[f64; 3]; 8])> LaneWork for RunForces<'_, '_, A> {
     type Output = ();
     #[inline(always)]
-    fn run(self) {
-        self.kernel.run_forces(self.settings, self.run, self.add)
+    fn run<S: pulp::Simd>(self, simd: S) {
+        self.kernel
+            .run_forces(simd, self.settings, self.run, self.add)
     }
 }
 

@@ -20,10 +20,13 @@
 //! linear elasticity, whose stress is computed in lanes.
 
 use crate::element::hex8_full::{FullGeometry, NATURAL_DERIVATIVES};
-use crate::element::lanes::{elastic_stress, F64s, LaneWork, VoigtLanes, LANES};
+use crate::element::lanes::{
+    elastic_stress, part, parts, set_part, sum3, F64s, LaneWork, VoigtLanes, LANES,
+};
 #[cfg(doc)]
 use crate::material::PlasticDamage;
 use crate::material::{Material, PointContext, Voigt};
+use pulp::Simd;
 
 const _: () = assert!(LANES == 8, "one lane per Gauss point of the 2×2×2 rule");
 
@@ -61,140 +64,105 @@ const fn derivative_lanes(points_in_lanes: bool) -> [[F64s; 3]; 8] {
 }
 
 /// Strain ε(u) at the eight Gauss points, one lane per point: lane g is
-/// [`FullGeometry::strain`]`(g, u)` bit for bit.
+/// [`FullGeometry::strain`]`(g, u)` bit for bit. Written in the vectors of `simd`
+/// ([`part`]), one vector of points at a time: with AVX2 four points, so that the nine
+/// sums H_ik and J⁻¹ stay in the sixteen registers (as `F64s` arithmetic the compiler
+/// spilled them, docs/benchmarks.md, stop 60).
 #[inline(always)]
-pub fn point_strains(geo: &FullGeometry, u: &[[f64; 3]; 8]) -> VoigtLanes {
-    // H_ik = Σ_a u_ai d_ak, accumulated from zero in node order. Where AVX2 is present,
-    // the same operations in explicit 256-bit vectors, four points at a time: left to the
-    // compiler, the `F64s` arithmetic here kept spilling and packing the wrong dimension
-    // (docs/benchmarks.md, stop 60). Every lane does the same IEEE operations in the same
-    // order either way.
-    #[cfg(target_arch = "x86_64")]
-    if let Some(v3) = pulp::x86::V3::try_new() {
-        use std::arch::x86_64::__m256d;
-        let avx = v3.avx;
-        let halves = |x: F64s| -> [__m256d; 2] { pulp::cast(x.0) };
-        let ji = &geo.jinv;
-        let mut out = [[avx._mm256_setzero_pd(); 2]; 6];
-        for half in 0..2 {
-            let mut h = [[avx._mm256_setzero_pd(); 3]; 3];
-            for (a, ua) in u.iter().enumerate() {
-                let d = &POINT_DERIVATIVES[a];
-                let dk = [halves(d[0])[half], halves(d[1])[half], halves(d[2])[half]];
-                for i in 0..3 {
-                    let uai = avx._mm256_set1_pd(ua[i]);
-                    for k in 0..3 {
-                        h[i][k] = avx._mm256_add_pd(h[i][k], avx._mm256_mul_pd(uai, dk[k]));
-                    }
-                }
-            }
-            let mut j = [[avx._mm256_setzero_pd(); 3]; 3];
-            for r in 0..3 {
-                for c in 0..3 {
-                    j[r][c] = halves(ji[r][c])[half];
-                }
-            }
-            let mut gr = [[avx._mm256_setzero_pd(); 3]; 3];
-            for i in 0..3 {
-                for c in 0..3 {
-                    gr[i][c] = avx._mm256_add_pd(
-                        avx._mm256_add_pd(
-                            avx._mm256_mul_pd(h[i][0], j[0][c]),
-                            avx._mm256_mul_pd(h[i][1], j[1][c]),
-                        ),
-                        avx._mm256_mul_pd(h[i][2], j[2][c]),
-                    );
-                }
-            }
-            out[0][half] = gr[0][0];
-            out[1][half] = gr[1][1];
-            out[2][half] = gr[2][2];
-            out[3][half] = avx._mm256_add_pd(gr[0][1], gr[1][0]);
-            out[4][half] = avx._mm256_add_pd(gr[1][2], gr[2][1]);
-            out[5][half] = avx._mm256_add_pd(gr[2][0], gr[0][2]);
-        }
-        let mut e = [F64s::ZERO; 6];
-        for c in 0..6 {
-            e[c] = F64s(pulp::cast(out[c]));
-        }
-        return e;
-    }
-    let mut h = [[F64s::ZERO; 3]; 3];
-    for (a, ua) in u.iter().enumerate() {
-        let d = &POINT_DERIVATIVES[a];
-        for i in 0..3 {
-            let uai = F64s::splat(ua[i]);
-            for k in 0..3 {
-                h[i][k] = h[i][k] + uai * d[k];
-            }
-        }
-    }
+pub fn point_strains<S: Simd>(simd: S, geo: &FullGeometry, u: &[[f64; 3]; 8]) -> VoigtLanes {
     let ji = &geo.jinv;
-    let gr: [[F64s; 3]; 3] = std::array::from_fn(|i| {
-        std::array::from_fn(|j| h[i][0] * ji[0][j] + h[i][1] * ji[1][j] + h[i][2] * ji[2][j])
-    });
-    [
-        gr[0][0],
-        gr[1][1],
-        gr[2][2],
-        gr[0][1] + gr[1][0],
-        gr[1][2] + gr[2][1],
-        gr[2][0] + gr[0][2],
-    ]
+    let mut e = [F64s::ZERO; 6];
+    for p in 0..parts::<S>() {
+        // H_ik = Σ_a u_ai d_ak, accumulated from zero in node order.
+        let mut h = [[simd.splat_f64s(0.0); 3]; 3];
+        for (a, ua) in u.iter().enumerate() {
+            let d = &POINT_DERIVATIVES[a];
+            let dk = [
+                part::<S>(&d[0], p),
+                part::<S>(&d[1], p),
+                part::<S>(&d[2], p),
+            ];
+            for i in 0..3 {
+                let uai = simd.splat_f64s(ua[i]);
+                for k in 0..3 {
+                    h[i][k] = simd.add_f64s(h[i][k], simd.mul_f64s(uai, dk[k]));
+                }
+            }
+        }
+        // G = H J⁻¹ (loops, not `array::from_fn`: its closures were not inlined into
+        // the dispatched code, 2.9× slower, measured).
+        let mut jt = [[simd.splat_f64s(0.0); 3]; 3];
+        for (c, jt_c) in jt.iter_mut().enumerate() {
+            for (r, jt_cr) in jt_c.iter_mut().enumerate() {
+                *jt_cr = part::<S>(&ji[r][c], p);
+            }
+        }
+        let mut gr = [[simd.splat_f64s(0.0); 3]; 3];
+        for (gr_i, h_i) in gr.iter_mut().zip(&h) {
+            for (gr_ic, jt_c) in gr_i.iter_mut().zip(&jt) {
+                *gr_ic = sum3(simd, *h_i, *jt_c);
+            }
+        }
+        set_part::<S>(&mut e[0], p, gr[0][0]);
+        set_part::<S>(&mut e[1], p, gr[1][1]);
+        set_part::<S>(&mut e[2], p, gr[2][2]);
+        set_part::<S>(&mut e[3], p, simd.add_f64s(gr[0][1], gr[1][0]));
+        set_part::<S>(&mut e[4], p, simd.add_f64s(gr[1][2], gr[2][1]));
+        set_part::<S>(&mut e[5], p, simd.add_f64s(gr[2][0], gr[0][2]));
+    }
+    e
 }
 
 /// Nodal forces Σ_g w det J B_gᵀ σ_g of the stresses `s` of the eight points (one lane per
-/// point): [`FullGeometry::add_forces`] for g = 0, …, 7 from zero, bit for bit.
+/// point): [`FullGeometry::add_forces`] for g = 0, …, 7 from zero, bit for bit. In the
+/// vectors of `simd` like [`point_strains`]: P with the points in vectors, then the nodal
+/// sums with the nodes in vectors (as `F64s` arithmetic the compiler packed the three
+/// components into one vector instead of the nodes, stop 60).
 #[inline(always)]
-pub fn point_forces(geo: &FullGeometry, s: &VoigtLanes) -> [[f64; 3]; 8] {
+pub fn point_forces<S: Simd>(simd: S, geo: &FullGeometry, s: &VoigtLanes) -> [[f64; 3]; 8] {
     let ji = &geo.jinv;
-    let w = geo.wdet;
+    // P_ik = w det J Σ_j σ_ij (J⁻¹)_kj, points in lanes.
     let sig = [[s[0], s[3], s[5]], [s[3], s[1], s[4]], [s[5], s[4], s[2]]];
-    let p: [[F64s; 3]; 3] = std::array::from_fn(|i| {
-        std::array::from_fn(|k| {
-            w * (sig[i][0] * ji[k][0] + sig[i][1] * ji[k][1] + sig[i][2] * ji[k][2])
-        })
-    });
-    // f_ai, nodes in lanes, summed over the points in order; with AVX2 in explicit 256-bit
-    // vectors, four nodes at a time (as in `point_strains`): as a loop of `F64s` the
-    // compiler packed the three components i into one vector instead of the nodes.
-    #[cfg(target_arch = "x86_64")]
-    if let Some(v3) = pulp::x86::V3::try_new() {
-        use std::arch::x86_64::__m256d;
-        let avx = v3.avx;
-        let halves = |x: F64s| -> [__m256d; 2] { pulp::cast(x.0) };
-        let mut lo = [avx._mm256_setzero_pd(); 3];
-        let mut hi = [avx._mm256_setzero_pd(); 3];
-        for (g, d) in NODE_DERIVATIVES.iter().enumerate() {
-            let [d0, d1, d2] = [halves(d[0]), halves(d[1]), halves(d[2])];
-            for i in 0..3 {
-                let p0 = avx._mm256_set1_pd(p[i][0][g]);
-                let p1 = avx._mm256_set1_pd(p[i][1][g]);
-                let p2 = avx._mm256_set1_pd(p[i][2][g]);
-                for (h, acc) in [(0usize, &mut lo[i]), (1, &mut hi[i])] {
-                    let t = avx._mm256_add_pd(
-                        avx._mm256_add_pd(
-                            avx._mm256_mul_pd(d0[h], p0),
-                            avx._mm256_mul_pd(d1[h], p1),
-                        ),
-                        avx._mm256_mul_pd(d2[h], p2),
-                    );
-                    *acc = avx._mm256_add_pd(*acc, t);
-                }
+    let mut pk = [[F64s::ZERO; 3]; 3];
+    for p in 0..parts::<S>() {
+        let w = part::<S>(&geo.wdet, p);
+        for (i, sig_i) in sig.iter().enumerate() {
+            let si = [
+                part::<S>(&sig_i[0], p),
+                part::<S>(&sig_i[1], p),
+                part::<S>(&sig_i[2], p),
+            ];
+            for k in 0..3 {
+                let jk = [
+                    part::<S>(&ji[k][0], p),
+                    part::<S>(&ji[k][1], p),
+                    part::<S>(&ji[k][2], p),
+                ];
+                set_part::<S>(&mut pk[i][k], p, simd.mul_f64s(w, sum3(simd, si, jk)));
             }
         }
-        let f: [F64s; 3] = std::array::from_fn(|i| F64s(pulp::cast([lo[i], hi[i]])));
-        return std::array::from_fn(|a| [f[0][a], f[1][a], f[2][a]]);
     }
+    // f_ai = Σ_g Σ_k ∂N_a/∂ξ_k P_ik(g), nodes in lanes, over the points in order.
     let mut f = [F64s::ZERO; 3];
-    for (g, d) in NODE_DERIVATIVES.iter().enumerate() {
-        for i in 0..3 {
-            let (p0, p1, p2) = (
-                F64s::splat(p[i][0][g]),
-                F64s::splat(p[i][1][g]),
-                F64s::splat(p[i][2][g]),
-            );
-            f[i] = f[i] + (d[0] * p0 + d[1] * p1 + d[2] * p2);
+    for p in 0..parts::<S>() {
+        let mut acc = [simd.splat_f64s(0.0); 3];
+        for (g, d) in NODE_DERIVATIVES.iter().enumerate() {
+            let dk = [
+                part::<S>(&d[0], p),
+                part::<S>(&d[1], p),
+                part::<S>(&d[2], p),
+            ];
+            for (i, acc_i) in acc.iter_mut().enumerate() {
+                let pg = [
+                    simd.splat_f64s(pk[i][0][g]),
+                    simd.splat_f64s(pk[i][1][g]),
+                    simd.splat_f64s(pk[i][2][g]),
+                ];
+                *acc_i = simd.add_f64s(*acc_i, sum3(simd, dk, pg));
+            }
+        }
+        for (fi, acc_i) in f.iter_mut().zip(acc) {
+            set_part::<S>(fi, p, acc_i);
         }
     }
     std::array::from_fn(|a| [f[0][a], f[1][a], f[2][a]])
@@ -206,7 +174,8 @@ pub fn point_forces(geo: &FullGeometry, s: &VoigtLanes) -> [[f64; 3]; 8] {
 /// computed in lanes; plastic-damage points by [`PlasticDamage::update_points`].
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-pub fn internal_force(
+pub fn internal_force<S: Simd>(
+    simd: S,
     geo: &FullGeometry,
     material: &Material,
     u: &[[f64; 3]; 8],
@@ -216,12 +185,12 @@ pub fn internal_force(
     ctx: &PointContext,
     f: &mut [[f64; 3]; 8],
 ) {
-    let eps = strains_with_initial(geo, u, eps0);
+    let eps = strains_with_initial(simd, geo, u, eps0);
     let sigma = match material {
         Material::Elastic(e) => elastic_stress(e.lambda, e.mu, &eps),
         Material::PlasticDamage(p) => p.update_points(&eps, old, new, ctx),
     };
-    *f = point_forces(geo, &sigma);
+    *f = point_forces(simd, geo, &sigma);
 }
 
 /// [`internal_force`] with the element's material states updated in place (`states`: the
@@ -231,7 +200,8 @@ pub fn internal_force(
 /// the new state of some point).
 #[allow(clippy::too_many_arguments)]
 #[inline(always)]
-pub fn internal_force_in_place(
+pub fn internal_force_in_place<S: Simd>(
+    simd: S,
     geo: &FullGeometry,
     material: &Material,
     u: &[[f64; 3]; 8],
@@ -240,23 +210,24 @@ pub fn internal_force_in_place(
     ctx: &PointContext,
     f: &mut [[f64; 3]; 8],
 ) -> bool {
-    let eps = strains_with_initial(geo, u, eps0);
+    let eps = strains_with_initial(simd, geo, u, eps0);
     let (sigma, moved) = match material {
         Material::Elastic(e) => (elastic_stress(e.lambda, e.mu, &eps), false),
         Material::PlasticDamage(p) => p.update_points_in_place(&eps, states, ctx),
     };
-    *f = point_forces(geo, &sigma);
+    *f = point_forces(simd, geo, &sigma);
     moved
 }
 
 /// Strains of the eight points ([`point_strains`]) plus the initial strains `eps0`, if any.
 #[inline(always)]
-fn strains_with_initial(
+fn strains_with_initial<S: Simd>(
+    simd: S,
     geo: &FullGeometry,
     u: &[[f64; 3]; 8],
     eps0: Option<&[Voigt]>,
 ) -> VoigtLanes {
-    let mut eps = point_strains(geo, u);
+    let mut eps = point_strains(simd, geo, u);
     if let Some(e0) = eps0 {
         for (g, e0g) in e0.iter().enumerate().take(8) {
             for i in 0..6 {
@@ -283,8 +254,9 @@ pub struct InternalForce<'a> {
 impl LaneWork for InternalForce<'_> {
     type Output = ();
     #[inline(always)]
-    fn run(self) {
+    fn run<S: Simd>(self, simd: S) {
         internal_force(
+            simd,
             self.geo,
             self.material,
             self.u,
@@ -301,16 +273,17 @@ impl LaneWork for InternalForce<'_> {
 /// points in lanes: the scalar `damping_force_full` of `element::groups` bit for bit
 /// (elastic stress of the strain of v, scaled by β, integrated).
 #[inline(always)]
-pub fn damping_force(
+pub fn damping_force<S: Simd>(
+    simd: S,
     geo: &FullGeometry,
     lambda: f64,
     mu: f64,
     v: &[[f64; 3]; 8],
     beta: f64,
 ) -> [[f64; 3]; 8] {
-    let s = elastic_stress(lambda, mu, &point_strains(geo, v));
+    let s = elastic_stress(lambda, mu, &point_strains(simd, geo, v));
     let b = F64s::splat(beta);
-    point_forces(geo, &s.map(|x| b * x))
+    point_forces(simd, geo, &s.map(|x| b * x))
 }
 
 #[cfg(test)]
@@ -358,8 +331,8 @@ mod tests {
     impl LaneWork for Damping<'_> {
         type Output = [[f64; 3]; 8];
         #[inline(always)]
-        fn run(self) -> [[f64; 3]; 8] {
-            damping_force(self.0, self.1.lambda, self.1.mu, self.2, 1e-4)
+        fn run<S: Simd>(self, simd: S) -> [[f64; 3]; 8] {
+            damping_force(simd, self.0, self.1.lambda, self.1.mu, self.2, 1e-4)
         }
     }
 
@@ -393,8 +366,9 @@ mod tests {
     impl LaneWork for InPlace<'_> {
         type Output = bool;
         #[inline(always)]
-        fn run(self) -> bool {
+        fn run<S: Simd>(self, simd: S) -> bool {
             internal_force_in_place(
+                simd,
                 self.geo,
                 self.material,
                 self.u,
@@ -406,7 +380,8 @@ mod tests {
         }
     }
 
-    /// Forces and states of the lane kernel (plain and dispatched, buffered and in place)
+    /// Forces and states of the lane kernel (dispatched and under pulp's scalar fallback,
+    /// the path of a CPU without vectors; buffered and in place)
     /// against the scalar kernel, for `draws` random elements, with and without an initial
     /// strain; in place also whether some point's hardening moved. Three steps: loading
     /// from the virgin state, further loading, and unloading (damaged points inside their
@@ -474,7 +449,7 @@ mod tests {
                         if dispatched {
                             run_lane_work(call)
                         } else {
-                            call.run()
+                            call.run(pulp::Scalar::new())
                         }
                         let what = format!(
                             "draw {draw}, initial strain {}, dispatched {dispatched}",
@@ -502,7 +477,7 @@ mod tests {
                         let moved = if dispatched {
                             run_lane_work(call)
                         } else {
-                            call.run()
+                            call.run(pulp::Scalar::new())
                         };
                         let what = format!(
                             "in place, draw {draw}, initial strain {}, dispatched {dispatched}",
@@ -594,6 +569,8 @@ mod tests {
             }
             let got = run_lane_work(Damping(&geo, &el, &v));
             assert_eq!(bits(got.as_flattened()), bits(want.as_flattened()));
+            let fallback = Damping(&geo, &el, &v).run(pulp::Scalar::new());
+            assert_eq!(bits(fallback.as_flattened()), bits(want.as_flattened()));
         }
     }
 }

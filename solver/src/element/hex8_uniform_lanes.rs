@@ -116,7 +116,7 @@ pub struct LaneKernel<'a, 's> {
 impl LaneWork for LaneKernel<'_, '_> {
     type Output = (NodalLanes, [bool; LANES]);
     #[inline(always)]
-    fn run(self) -> Self::Output {
+    fn run<S: pulp::Simd>(self, _simd: S) -> Self::Output {
         internal_forces_in_place(
             self.block,
             self.material,
@@ -217,7 +217,7 @@ mod tests {
     impl LaneWork for Lanes<'_> {
         type Output = (NodalLanes, [bool; LANES]);
         #[inline(always)]
-        fn run(self) -> Self::Output {
+        fn run<S: pulp::Simd>(self, _simd: S) -> Self::Output {
             let mut s = self.states.each_mut().map(|v| v.as_mut_slice());
             internal_forces_in_place(
                 self.block,
@@ -314,7 +314,7 @@ mod tests {
                         states: &mut plain_states,
                         ctx: &ctx,
                     }
-                    .run();
+                    .run(pulp::Scalar::new());
                     for l in 0..LANES {
                         let mut ue: [[f64; 3]; 8] =
                             std::array::from_fn(|a| nodes[conn[l][a] as usize]);

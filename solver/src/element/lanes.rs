@@ -13,6 +13,10 @@
 
 use std::ops::{Add, Div, Index, IndexMut, Mul, Neg, Sub};
 
+/// The instruction set a [`LaneWork`] is compiled for (pulp's), re-exported for the
+/// implementations outside this crate.
+pub use pulp::Simd;
+
 /// Elements per lane block. 8 × f64: one AVX-512 register, two AVX2 registers.
 pub const LANES: usize = 8;
 
@@ -124,11 +128,14 @@ pub type VoigtLanes = [F64s; 6];
 /// wide registers), so that the whole body is inlined into pulp's per-instruction-set entry
 /// points. (A closure handed to pulp is not enough: its body is inlined only when the
 /// compiler chooses to, and a large one stays baseline code — measured, docs/benchmarks.md.)
+/// `simd` is the instruction set chosen: kernels that spell their arithmetic in its
+/// vectors ([`part`], [`set_part`], [`sum3`]) take it, the others ignore it; work run
+/// outside the dispatch passes `pulp::Scalar::new()`.
 pub trait LaneWork {
     /// What the work returns.
     type Output;
     /// Do the work (to be marked `#[inline(always)]`).
-    fn run(self) -> Self::Output;
+    fn run<S: pulp::Simd>(self, simd: S) -> Self::Output;
 }
 
 struct Dispatched<W>(W);
@@ -136,8 +143,8 @@ struct Dispatched<W>(W);
 impl<W: LaneWork> pulp::WithSimd for Dispatched<W> {
     type Output = W::Output;
     #[inline(always)]
-    fn with_simd<S: pulp::Simd>(self, _simd: S) -> W::Output {
-        self.0.run()
+    fn with_simd<S: pulp::Simd>(self, simd: S) -> W::Output {
+        self.0.run(simd)
     }
 }
 
@@ -147,6 +154,42 @@ impl<W: LaneWork> pulp::WithSimd for Dispatched<W> {
 #[inline(always)]
 pub fn run_lane_work<W: LaneWork>(work: W) -> W::Output {
     pulp::Arch::new().dispatch(Dispatched(work))
+}
+
+/// How many vectors of `S` an [`F64s`] is: 1 with AVX-512, 2 with AVX2, 8 without
+/// vectors (pulp's scalar fallback).
+#[inline(always)]
+pub fn parts<S: pulp::Simd>() -> usize {
+    assert!(
+        LANES.is_multiple_of(S::F64_LANES),
+        "an F64s is whole vectors"
+    );
+    LANES / S::F64_LANES
+}
+
+/// Vector `p` of `x` (lanes `p·n .. (p + 1)·n`, n = `S::F64_LANES`), for kernels written
+/// in the vectors of the dispatched instruction set: with AVX2 an [`F64s`] is two 256-bit
+/// vectors, and left to the compiler its element-wise operators spilled and packed the
+/// wrong dimension where many are live at once (docs/benchmarks.md, stop 60).
+#[inline(always)]
+pub fn part<S: pulp::Simd>(x: &F64s, p: usize) -> S::f64s {
+    S::as_simd_f64s(&x.0).0[p]
+}
+
+/// Write vector `p` of `x` (the inverse of [`part`]).
+#[inline(always)]
+pub fn set_part<S: pulp::Simd>(x: &mut F64s, p: usize, v: S::f64s) {
+    S::as_mut_simd_f64s(&mut x.0).0[p] = v;
+}
+
+/// (a₀ b₀ + a₁ b₁) + a₂ b₂ in the vectors of `simd`: separate IEEE multiplies and adds in
+/// this order (no FMA), the scalar kernels' three-term sums bit for bit.
+#[inline(always)]
+pub fn sum3<S: pulp::Simd>(simd: S, a: [S::f64s; 3], b: [S::f64s; 3]) -> S::f64s {
+    simd.add_f64s(
+        simd.add_f64s(simd.mul_f64s(a[0], b[0]), simd.mul_f64s(a[1], b[1])),
+        simd.mul_f64s(a[2], b[2]),
+    )
 }
 
 /// An [`F64s`] whose lane `l` is `$e` (written out lane by lane: eight loads into one
@@ -294,10 +337,42 @@ mod tests {
         impl LaneWork for Square {
             type Output = F64s;
             #[inline(always)]
-            fn run(self) -> F64s {
+            fn run<S: pulp::Simd>(self, _simd: S) -> F64s {
                 self.0 * self.0
             }
         }
         assert_eq!(run_lane_work(Square(a)).0[2], 2.5 * 2.5);
+    }
+
+    /// The vector parts and the three-term sum give the scalar operations' bits, under
+    /// the dispatched instruction set and under pulp's scalar fallback.
+    #[test]
+    fn parts_and_sums_are_the_scalar_operations() {
+        let x: [F64s; 6] = std::array::from_fn(|i| {
+            F64s(std::array::from_fn(|l| (1.0 + i as f64) / (3.0 + l as f64)))
+        });
+        let expected = F64s(std::array::from_fn(|l| {
+            x[0][l] * x[1][l] + x[2][l] * x[3][l] + x[4][l] * x[5][l]
+        }));
+        struct Sum<'a>(&'a [F64s; 6]);
+        impl LaneWork for Sum<'_> {
+            type Output = F64s;
+            #[inline(always)]
+            fn run<S: pulp::Simd>(self, simd: S) -> F64s {
+                let x = self.0;
+                let mut out = F64s::ZERO;
+                for p in 0..parts::<S>() {
+                    let v = |i: usize| part::<S>(&x[i], p);
+                    set_part::<S>(
+                        &mut out,
+                        p,
+                        sum3(simd, [v(0), v(2), v(4)], [v(1), v(3), v(5)]),
+                    );
+                }
+                out
+            }
+        }
+        assert_eq!(run_lane_work(Sum(&x)), expected);
+        assert_eq!(Sum(&x).run(pulp::Scalar::new()), expected);
     }
 }

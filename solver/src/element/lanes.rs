@@ -10,6 +10,12 @@
 //! lane performs exactly the IEEE operations of the scalar kernel in the same order (Rust
 //! never contracts a multiply and an add into an FMA by itself), so the lane kernels give
 //! the scalar kernels' results bit for bit; the tests compare them on random elements.
+//!
+//! Where many lane values are live at once, the choice LLVM makes for `F64s` arithmetic
+//! can be poor (on AVX2 an `F64s` is two registers of sixteen: it spilled, and packed the
+//! wrong dimension): such kernels are written in the vectors of the instruction set that
+//! [`LaneWork::run`] receives, through [`part`], [`set_part`] and [`sum3`] — once, for
+//! AVX-512, AVX2 and pulp's scalar fallback alike (`hex8_full_lanes`).
 
 use std::ops::{Add, Div, Index, IndexMut, Mul, Neg, Sub};
 

@@ -208,6 +208,14 @@ impl PlasticDamage {
         let old = &old[..LANES * N];
         let new = &mut new[..LANES * N];
         let (eff, pass) = self.virgin_lanes(strain, old, ctx);
+        if every(&pass) {
+            // The elastic regime's common case: σ is σ̄ whole.
+            for (g, (o, n)) in old.chunks_exact(N).zip(new.chunks_exact_mut(N)).enumerate() {
+                n.copy_from_slice(o);
+                write_virgin_lane(n, strain, &eff, g);
+            }
+            return eff;
+        }
         let yielded = self.yielded_lanes(strain, &eff, old, &pass, ctx);
         let mut sigma = [F64s::ZERO; 6];
         for (g, (o, n)) in old.chunks_exact(N).zip(new.chunks_exact_mut(N)).enumerate() {
@@ -251,6 +259,13 @@ impl PlasticDamage {
         const N: usize = slot::LEN;
         let states = &mut states[..LANES * N];
         let (eff, pass) = self.virgin_lanes(strain, states, ctx);
+        if every(&pass) {
+            // The elastic regime's common case: σ is σ̄ whole, no hardening moves.
+            for (g, n) in states.chunks_exact_mut(N).enumerate() {
+                write_virgin_lane(n, strain, &eff, g);
+            }
+            return (eff, false);
+        }
         let yielded = self.yielded_lanes(strain, &eff, states, &pass, ctx);
         let mut sigma = [F64s::ZERO; 6];
         let mut moved = false;
@@ -276,4 +291,14 @@ impl PlasticDamage {
         }
         (sigma, moved)
     }
+}
+
+/// Whether every lane passed (a loop: no closure to inline).
+#[inline(always)]
+fn every(pass: &[bool; LANES]) -> bool {
+    let mut all = true;
+    for &p in pass {
+        all &= p;
+    }
+    all
 }

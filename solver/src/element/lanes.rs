@@ -354,12 +354,27 @@ mod tests {
     /// the dispatched instruction set and under pulp's scalar fallback.
     #[test]
     fn parts_and_sums_are_the_scalar_operations() {
+        // a₀b₀ = 1e16 + l (ulp 2): (a₀b₀ + 1) + 1 and a₀b₀ + (1 + 1) differ in their
+        // last bit in some lanes, so the association is tested, not only the products.
         let x: [F64s; 6] = std::array::from_fn(|i| {
-            F64s(std::array::from_fn(|l| (1.0 + i as f64) / (3.0 + l as f64)))
+            F64s(std::array::from_fn(|l| {
+                if i == 0 {
+                    1e16 + l as f64
+                } else {
+                    1.0
+                }
+            }))
         });
         let expected = F64s(std::array::from_fn(|l| {
             x[0][l] * x[1][l] + x[2][l] * x[3][l] + x[4][l] * x[5][l]
         }));
+        let other_order = F64s(std::array::from_fn(|l| {
+            x[0][l] * x[1][l] + (x[2][l] * x[3][l] + x[4][l] * x[5][l])
+        }));
+        assert_ne!(
+            expected, other_order,
+            "the values must tell the orders apart"
+        );
         struct Sum<'a>(&'a [F64s; 6]);
         impl LaneWork for Sum<'_> {
             type Output = F64s;

@@ -21,12 +21,11 @@
 
 use crate::element::hex8_full::{FullGeometry, NATURAL_DERIVATIVES};
 use crate::element::lanes::{
-    elastic_stress, part, parts, set_part, sum3, F64s, LaneWork, VoigtLanes, LANES,
+    elastic_stress, part, parts, set_part, sum3, F64s, LaneWork, Simd, VoigtLanes, LANES,
 };
 #[cfg(doc)]
 use crate::material::PlasticDamage;
 use crate::material::{Material, PointContext, Voigt};
-use pulp::Simd;
 
 const _: () = assert!(LANES == 8, "one lane per Gauss point of the 2×2×2 rule");
 
@@ -188,7 +187,7 @@ pub fn internal_force<S: Simd>(
     let eps = strains_with_initial(simd, geo, u, eps0);
     let sigma = match material {
         Material::Elastic(e) => elastic_stress(e.lambda, e.mu, &eps),
-        Material::PlasticDamage(p) => p.update_points(&eps, old, new, ctx),
+        Material::PlasticDamage(p) => p.update_points(simd, &eps, old, new, ctx),
     };
     *f = point_forces(simd, geo, &sigma);
 }
@@ -213,7 +212,7 @@ pub fn internal_force_in_place<S: Simd>(
     let eps = strains_with_initial(simd, geo, u, eps0);
     let (sigma, moved) = match material {
         Material::Elastic(e) => (elastic_stress(e.lambda, e.mu, &eps), false),
-        Material::PlasticDamage(p) => p.update_points_in_place(&eps, states, ctx),
+        Material::PlasticDamage(p) => p.update_points_in_place(simd, &eps, states, ctx),
     };
     *f = point_forces(simd, geo, &sigma);
     moved

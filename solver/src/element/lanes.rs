@@ -141,7 +141,7 @@ pub trait LaneWork {
     /// What the work returns.
     type Output;
     /// Do the work (to be marked `#[inline(always)]`).
-    fn run<S: pulp::Simd>(self, simd: S) -> Self::Output;
+    fn run<S: Simd>(self, simd: S) -> Self::Output;
 }
 
 struct Dispatched<W>(W);
@@ -149,7 +149,7 @@ struct Dispatched<W>(W);
 impl<W: LaneWork> pulp::WithSimd for Dispatched<W> {
     type Output = W::Output;
     #[inline(always)]
-    fn with_simd<S: pulp::Simd>(self, simd: S) -> W::Output {
+    fn with_simd<S: Simd>(self, simd: S) -> W::Output {
         self.0.run(simd)
     }
 }
@@ -165,7 +165,7 @@ pub fn run_lane_work<W: LaneWork>(work: W) -> W::Output {
 /// How many vectors of `S` an [`F64s`] is: 1 with AVX-512, 2 with AVX2, 8 without
 /// vectors (pulp's scalar fallback).
 #[inline(always)]
-pub fn parts<S: pulp::Simd>() -> usize {
+pub fn parts<S: Simd>() -> usize {
     assert!(
         LANES.is_multiple_of(S::F64_LANES),
         "an F64s is whole vectors"
@@ -178,20 +178,20 @@ pub fn parts<S: pulp::Simd>() -> usize {
 /// vectors, and left to the compiler its element-wise operators spilled and packed the
 /// wrong dimension where many are live at once (docs/benchmarks.md, stop 60).
 #[inline(always)]
-pub fn part<S: pulp::Simd>(x: &F64s, p: usize) -> S::f64s {
+pub fn part<S: Simd>(x: &F64s, p: usize) -> S::f64s {
     S::as_simd_f64s(&x.0).0[p]
 }
 
 /// Write vector `p` of `x` (the inverse of [`part`]).
 #[inline(always)]
-pub fn set_part<S: pulp::Simd>(x: &mut F64s, p: usize, v: S::f64s) {
+pub fn set_part<S: Simd>(x: &mut F64s, p: usize, v: S::f64s) {
     S::as_mut_simd_f64s(&mut x.0).0[p] = v;
 }
 
 /// (a₀ b₀ + a₁ b₁) + a₂ b₂ in the vectors of `simd`: separate IEEE multiplies and adds in
 /// this order (no FMA), the scalar kernels' three-term sums bit for bit.
 #[inline(always)]
-pub fn sum3<S: pulp::Simd>(simd: S, a: [S::f64s; 3], b: [S::f64s; 3]) -> S::f64s {
+pub fn sum3<S: Simd>(simd: S, a: [S::f64s; 3], b: [S::f64s; 3]) -> S::f64s {
     simd.add_f64s(
         simd.add_f64s(simd.mul_f64s(a[0], b[0]), simd.mul_f64s(a[1], b[1])),
         simd.mul_f64s(a[2], b[2]),
@@ -323,6 +323,24 @@ pub fn elastic_stress<T: Lane>(lambda: f64, mu: f64, e: &[T; 6]) -> [T; 6] {
     ]
 }
 
+/// [`elastic_stress`] in the vectors of `simd` (one vector of points): the same IEEE
+/// operations in the same order, so the same bits lane by lane.
+#[inline(always)]
+pub fn elastic_stress_in<S: Simd>(simd: S, lambda: f64, mu: f64, e: &[S::f64s; 6]) -> [S::f64s; 6] {
+    let tr = simd.add_f64s(simd.add_f64s(e[0], e[1]), e[2]);
+    let l = simd.mul_f64s(simd.splat_f64s(lambda), tr);
+    let m2 = simd.splat_f64s(2.0 * mu);
+    let mu = simd.splat_f64s(mu);
+    [
+        simd.add_f64s(l, simd.mul_f64s(m2, e[0])),
+        simd.add_f64s(l, simd.mul_f64s(m2, e[1])),
+        simd.add_f64s(l, simd.mul_f64s(m2, e[2])),
+        simd.mul_f64s(mu, e[3]),
+        simd.mul_f64s(mu, e[4]),
+        simd.mul_f64s(mu, e[5]),
+    ]
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -343,7 +361,7 @@ mod tests {
         impl LaneWork for Square {
             type Output = F64s;
             #[inline(always)]
-            fn run<S: pulp::Simd>(self, _simd: S) -> F64s {
+            fn run<S: Simd>(self, _simd: S) -> F64s {
                 self.0 * self.0
             }
         }
@@ -379,7 +397,7 @@ mod tests {
         impl LaneWork for Sum<'_> {
             type Output = F64s;
             #[inline(always)]
-            fn run<S: pulp::Simd>(self, simd: S) -> F64s {
+            fn run<S: Simd>(self, simd: S) -> F64s {
                 let x = self.0;
                 let mut out = F64s::ZERO;
                 for p in 0..parts::<S>() {

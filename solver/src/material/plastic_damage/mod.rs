@@ -38,7 +38,7 @@ pub use hardening::{
 pub use params::{mohr_coulomb_fc, Constants, PlasticDamageParams};
 pub use recovery::Recovery;
 
-use crate::element::lanes::{Lane, VoigtLanes};
+use crate::element::lanes::{Lane, Simd, VoigtLanes};
 use crate::error::{DcfmError, Result};
 use crate::material::{Elastic, PointContext, Voigt};
 use potential::Potential;
@@ -112,6 +112,47 @@ fn virgin_bracket<T: Lane>(surface: &YieldSurface, beta: T, eff: &[T; 6]) -> T {
     let zero = T::splat(0.0);
     T::splat(surface.alpha) * i1 + q + beta * smax.max(zero)
         - T::splat(surface.gamma) * (-smax).max(zero)
+}
+
+/// [`virgin_bracket`] in the vectors of `simd` (one vector of points): the same IEEE
+/// operations in the same order. Only its comparison with the limit is used, and that is
+/// the same as [`virgin_bracket`]'s: the vector maximum differs from `f64::max` only in
+/// the sign of a zero (which a comparison ignores) and where σ̂_max is NaN, and then the
+/// bracket is NaN under either (σ̂_max is NaN only where Ī₁ or q is, and both enter it).
+#[inline(always)]
+fn virgin_bracket_in<S: Simd>(
+    simd: S,
+    surface: &YieldSurface,
+    beta: S::f64s,
+    eff: &[S::f64s; 6],
+) -> S::f64s {
+    const THIRD: f64 = 1.0 / 3.0;
+    // Spelled out call by call: closures are not reliably inlined into the dispatched
+    // code (docs/benchmarks.md, stop 60).
+    let i1 = simd.add_f64s(simd.add_f64s(eff[0], eff[1]), eff[2]);
+    let m = simd.mul_f64s(i1, simd.splat_f64s(THIRD));
+    let a = simd.sub_f64s(eff[0], m);
+    let b = simd.sub_f64s(eff[1], m);
+    let c = simd.sub_f64s(eff[2], m);
+    let normal = simd.add_f64s(
+        simd.add_f64s(simd.mul_f64s(a, a), simd.mul_f64s(b, b)),
+        simd.mul_f64s(c, c),
+    );
+    let shear = simd.add_f64s(
+        simd.add_f64s(simd.mul_f64s(eff[3], eff[3]), simd.mul_f64s(eff[4], eff[4])),
+        simd.mul_f64s(eff[5], eff[5]),
+    );
+    let ss = simd.add_f64s(normal, simd.mul_f64s(simd.splat_f64s(2.0), shear));
+    let q = simd.sqrt_f64s(simd.mul_f64s(simd.splat_f64s(1.5), ss));
+    let smax = simd.add_f64s(m, simd.mul_f64s(simd.splat_f64s(2.0 * THIRD), q));
+    let zero = simd.splat_f64s(0.0);
+    let tension = simd.mul_f64s(beta, simd.max_f64s(smax, zero));
+    let compression = simd.mul_f64s(
+        simd.splat_f64s(surface.gamma),
+        simd.max_f64s(simd.neg_f64s(smax), zero),
+    );
+    let linear = simd.add_f64s(simd.mul_f64s(simd.splat_f64s(surface.alpha), i1), q);
+    simd.sub_f64s(simd.add_f64s(linear, tension), compression)
 }
 
 /// Allowance on the bracket of eq. (25) evaluated at closed-form principal values

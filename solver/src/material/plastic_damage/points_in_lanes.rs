@@ -11,10 +11,12 @@
 
 use super::recovery_in_lanes::consistent_stress_lanes;
 use super::{
-    dissipated_after, slot, virgin_bound, virgin_bracket, write_virgin_lane, PlasticDamage,
-    Recovery,
+    dissipated_after, slot, virgin_bound, virgin_bracket, virgin_bracket_in, write_virgin_lane,
+    PlasticDamage, Recovery,
 };
-use crate::element::lanes::{elastic_stress, F64s, VoigtLanes, LANES};
+use crate::element::lanes::{
+    elastic_stress_in, part, parts, set_part, F64s, Simd, VoigtLanes, LANES,
+};
 use crate::material::{PointContext, Voigt};
 
 /// What the yielded-elastic shortcut gives the points of an element that take it in lanes
@@ -48,8 +50,9 @@ impl PlasticDamage {
     /// [`PlasticDamage::virgin_elastic`]'s check (never yielded, finite strain, inside the
     /// initial surface by the margin). Reads the states only.
     #[inline(always)]
-    fn virgin_lanes(
+    fn virgin_lanes<S: Simd>(
         &self,
+        simd: S,
         strain: &VoigtLanes,
         states: &[f64],
         ctx: &PointContext,
@@ -72,15 +75,34 @@ impl PlasticDamage {
         let plastic: [F64s; 6] =
             std::array::from_fn(|i| F64s(std::array::from_fn(|g| plastic_rows[g][i])));
         let el = &self.elastic;
-        let trial: VoigtLanes = std::array::from_fn(|i| strain[i] - plastic[i]);
-        let eff = elastic_stress(el.lambda, el.mu, &trial);
-        let pass = if candidate.iter().any(|&c| c) {
-            let (beta, limit) = self.virgin_bound_for(ctx.char_length.max(1e-12));
-            let bracket = virgin_bracket(&self.surface, F64s::splat(beta), &eff);
-            std::array::from_fn(|g| candidate[g] && beta >= 0.0 && bracket[g] <= limit)
+        let any = candidate.iter().any(|&c| c);
+        let (beta, limit) = if any {
+            self.virgin_bound_for(ctx.char_length.max(1e-12))
         } else {
-            [false; LANES]
+            (-1.0, 0.0)
         };
+        // σ̄ = E₀ : (ε − εᵖ) and the bracket, one vector of points at a time in the
+        // vectors of `simd` (as `F64s` operators the compiler kept them in memory).
+        let mut eff = [F64s::ZERO; 6];
+        let mut bracket = F64s::ZERO;
+        for p in 0..parts::<S>() {
+            let mut trial = [simd.splat_f64s(0.0); 6];
+            for (i, t) in trial.iter_mut().enumerate() {
+                *t = simd.sub_f64s(part::<S>(&strain[i], p), part::<S>(&plastic[i], p));
+            }
+            let stress = elastic_stress_in(simd, el.lambda, el.mu, &trial);
+            for (e, s) in eff.iter_mut().zip(stress) {
+                set_part::<S>(e, p, s);
+            }
+            if any {
+                let b = virgin_bracket_in(simd, &self.surface, simd.splat_f64s(beta), &stress);
+                set_part::<S>(&mut bracket, p, b);
+            }
+        }
+        let mut pass = [false; LANES];
+        for (g, pass_g) in pass.iter_mut().enumerate() {
+            *pass_g = candidate[g] && beta >= 0.0 && bracket[g] <= limit;
+        }
         (eff, pass)
     }
 
@@ -197,8 +219,9 @@ impl PlasticDamage {
     /// `old[g·LEN..]` → `new[g·LEN..]`; returns the nominal stresses, one lane per point.
     /// The same states and stresses as [`PlasticDamage::update`] point by point.
     #[inline(always)]
-    pub fn update_points(
+    pub fn update_points<S: Simd>(
         &self,
+        simd: S,
         strain: &VoigtLanes,
         old: &[f64],
         new: &mut [f64],
@@ -207,8 +230,8 @@ impl PlasticDamage {
         const N: usize = slot::LEN;
         let old = &old[..LANES * N];
         let new = &mut new[..LANES * N];
-        let (eff, pass) = self.virgin_lanes(strain, old, ctx);
-        if every(&pass) {
+        let (eff, pass) = self.virgin_lanes(simd, strain, old, ctx);
+        if pass == [true; LANES] {
             // The elastic regime's common case: σ is σ̄ whole.
             for (g, (o, n)) in old.chunks_exact(N).zip(new.chunks_exact_mut(N)).enumerate() {
                 n.copy_from_slice(o);
@@ -250,16 +273,17 @@ impl PlasticDamage {
     /// stresses as [`Self::update_points`] bit for bit; second: whether the hardening of
     /// any point moved ([`PlasticDamage::hardening_moved`] of its old and new state).
     #[inline(always)]
-    pub fn update_points_in_place(
+    pub fn update_points_in_place<S: Simd>(
         &self,
+        simd: S,
         strain: &VoigtLanes,
         states: &mut [f64],
         ctx: &PointContext,
     ) -> (VoigtLanes, bool) {
         const N: usize = slot::LEN;
         let states = &mut states[..LANES * N];
-        let (eff, pass) = self.virgin_lanes(strain, states, ctx);
-        if every(&pass) {
+        let (eff, pass) = self.virgin_lanes(simd, strain, states, ctx);
+        if pass == [true; LANES] {
             // The elastic regime's common case: σ is σ̄ whole, no hardening moves.
             for (g, n) in states.chunks_exact_mut(N).enumerate() {
                 write_virgin_lane(n, strain, &eff, g);
@@ -291,14 +315,4 @@ impl PlasticDamage {
         }
         (sigma, moved)
     }
-}
-
-/// Whether every lane passed (a loop: no closure to inline).
-#[inline(always)]
-fn every(pass: &[bool; LANES]) -> bool {
-    let mut all = true;
-    for &p in pass {
-        all &= p;
-    }
-    all
 }

@@ -33,7 +33,7 @@ use serde::Deserialize;
 
 use crate::element::groups::SharedMut;
 use crate::element::host_locate::{HostLocator, HostPoint};
-use crate::element::lanes::{run_lane_work, F64s, LaneWork};
+use crate::element::lanes::{run_lane_work, F64s, LaneWork, Simd};
 use crate::lanes8;
 use crate::mesh::Mesh;
 
@@ -940,7 +940,7 @@ struct HostForces<'a> {
 impl LaneWork for HostForces<'_> {
     type Output = ();
     #[inline(always)]
-    fn run<S: pulp::Simd>(self, _simd: S) {
+    fn run<S: Simd>(self, _simd: S) {
         for (j, force) in self.out.iter_mut().enumerate() {
             let h = self.first + j;
             let nodes = &self.host_nodes[h];

@@ -12,7 +12,7 @@ use crate::element::hex8_full::{self, FullGeometry};
 use crate::element::hex8_full_lanes;
 use crate::element::hex8_uniform::{self, UniformGeometry};
 use crate::element::hex8_uniform_lanes::{self, UniformBlock};
-use crate::element::lanes::{self, LaneWork, LANES};
+use crate::element::lanes::{self, LaneWork, Simd, LANES};
 use crate::element::stable_step::characteristic_length;
 use crate::element::uniform_set::UniformSet;
 use crate::element::Integration;
@@ -1123,7 +1123,7 @@ impl<'k> Kernel<'k> {
     /// Damping force β K0 v of a fully integrated element `le` into `fd` (zero when
     /// β = 0; the one-point elements' damping is computed in [`Kernel::forces`]).
     #[inline(always)]
-    fn damping<S: pulp::Simd>(&self, simd: S, le: usize, fd: &mut [[f64; 3]; 8]) {
+    fn damping<S: Simd>(&self, simd: S, le: usize, fd: &mut [[f64; 3]; 8]) {
         *fd = [[0.0; 3]; 8];
         if self.beta > 0.0 {
             if let GroupGeometry::Full(g) = self.geometry {
@@ -1146,7 +1146,7 @@ impl<'k> Kernel<'k> {
     /// skipped. An `#[inline(always)]` body, so that it is compiled for the instruction
     /// set of the [`lanes::run_lane_work`] that calls it.
     #[inline(always)]
-    fn chunk_forces<S: pulp::Simd>(
+    fn chunk_forces<S: Simd>(
         &self,
         simd: S,
         settings: &ForceSettings<'_>,
@@ -1191,7 +1191,7 @@ impl<'k> Kernel<'k> {
     /// to `add` (its nodes, internal and damping forces). `#[inline(always)]` like
     /// [`Kernel::chunk_forces`].
     #[inline(always)]
-    fn run_forces<S: pulp::Simd>(
+    fn run_forces<S: Simd>(
         &self,
         simd: S,
         settings: &ForceSettings<'_>,
@@ -1306,6 +1306,10 @@ impl<'k> Kernel<'k> {
         let mut states: [&mut [f64]; LANES] = std::array::from_fn(|l| unsafe {
             std::slice::from_raw_parts_mut(self.states.new.add((first + l) * stride), stride)
         });
+        // Dispatched on its own, not `.run(simd)` with the pass's token: inlined into the
+        // dispatched pass the one-point elastic cube ran 2× slower (40³, one thread:
+        // 4.09e6 against 7.4–8.4e6 element-updates/s alternated; docs/benchmarks.md,
+        // stop 62; the code generation behind it was not traced).
         let (f, moved) = lanes::run_lane_work(hex8_uniform_lanes::LaneKernel {
             block,
             material: self.material,
@@ -1334,7 +1338,7 @@ impl<'k> Kernel<'k> {
     /// Internal force `fe` and damping force `fd` (zero when β = 0) of element `le` over
     /// a step `dt`, its material states written to the pending buffer (or in place).
     #[inline(always)]
-    fn forces<S: pulp::Simd>(
+    fn forces<S: Simd>(
         &self,
         simd: S,
         le: usize,
@@ -1498,7 +1502,7 @@ struct ChunkForces<'w, 'k> {
 impl LaneWork for ChunkForces<'_, '_> {
     type Output = ();
     #[inline(always)]
-    fn run<S: pulp::Simd>(self, simd: S) {
+    fn run<S: Simd>(self, simd: S) {
         self.kernel
             .chunk_forces(simd, self.settings, self.first, self.out, self.damping)
     }
@@ -1515,7 +1519,7 @@ struct RunForces<'w, 'k, A> {
 impl<A: Fn(&[u32; 8], &[[f64; 3]; 8], &[[f64; 3]; 8])> LaneWork for RunForces<'_, '_, A> {
     type Output = ();
     #[inline(always)]
-    fn run<S: pulp::Simd>(self, simd: S) {
+    fn run<S: Simd>(self, simd: S) {
         self.kernel
             .run_forces(simd, self.settings, self.run, self.add)
     }

@@ -21,7 +21,7 @@
 use crate::element::hex8_uniform::{
     forces_kq_of, gradient_and_modes_of, modes_from_of, strain_of, UniformGeometry,
 };
-use crate::element::lanes::{F64s, LaneWork, NodalLanes, VoigtLanes, LANES};
+use crate::element::lanes::{F64s, LaneWork, NodalLanes, Simd, VoigtLanes, LANES};
 use crate::lanes8;
 use crate::material::{Material, PointContext};
 use seq_macro::seq;
@@ -116,7 +116,7 @@ pub struct LaneKernel<'a, 's> {
 impl LaneWork for LaneKernel<'_, '_> {
     type Output = (NodalLanes, [bool; LANES]);
     #[inline(always)]
-    fn run<S: pulp::Simd>(self, _simd: S) -> Self::Output {
+    fn run<S: Simd>(self, _simd: S) -> Self::Output {
         internal_forces_in_place(
             self.block,
             self.material,
@@ -179,7 +179,7 @@ mod tests {
     use super::*;
     use crate::element::hex8_shape::NODE_XI;
     use crate::element::hex8_uniform::internal_force_in_place;
-    use crate::element::lanes::{lane_of, run_lane_work, LaneWork};
+    use crate::element::lanes::{lane_of, run_lane_work, LaneWork, Simd};
     use crate::material::plastic_damage::{PlasticDamageParams, Regularisation};
     use crate::material::{Elastic, PlasticDamage, Voigt};
     use crate::test_random::{cracking_concrete, Lcg};
@@ -217,7 +217,7 @@ mod tests {
     impl LaneWork for Lanes<'_> {
         type Output = (NodalLanes, [bool; LANES]);
         #[inline(always)]
-        fn run<S: pulp::Simd>(self, _simd: S) -> Self::Output {
+        fn run<S: Simd>(self, _simd: S) -> Self::Output {
             let mut s = self.states.each_mut().map(|v| v.as_mut_slice());
             internal_forces_in_place(
                 self.block,

@@ -21,7 +21,7 @@
 
 use crate::element::hex8_full::{FullGeometry, NATURAL_DERIVATIVES};
 use crate::element::lanes::{
-    elastic_stress, part, parts, set_part, sum3, F64s, LaneWork, Simd, VoigtLanes, LANES,
+    elastic_stress_lanes, part, parts, set_part, sum3, F64s, LaneWork, Simd, VoigtLanes, LANES,
 };
 #[cfg(doc)]
 use crate::material::PlasticDamage;
@@ -186,7 +186,7 @@ pub fn internal_force<S: Simd>(
 ) {
     let eps = strains_with_initial(simd, geo, u, eps0);
     let sigma = match material {
-        Material::Elastic(e) => elastic_stress(e.lambda, e.mu, &eps),
+        Material::Elastic(e) => elastic_stress_lanes(simd, e.lambda, e.mu, &eps),
         Material::PlasticDamage(p) => p.update_points(simd, &eps, old, new, ctx),
     };
     *f = point_forces(simd, geo, &sigma);
@@ -211,7 +211,7 @@ pub fn internal_force_in_place<S: Simd>(
 ) -> bool {
     let eps = strains_with_initial(simd, geo, u, eps0);
     let (sigma, moved) = match material {
-        Material::Elastic(e) => (elastic_stress(e.lambda, e.mu, &eps), false),
+        Material::Elastic(e) => (elastic_stress_lanes(simd, e.lambda, e.mu, &eps), false),
         Material::PlasticDamage(p) => p.update_points_in_place(simd, &eps, states, ctx),
     };
     *f = point_forces(simd, geo, &sigma);
@@ -280,7 +280,7 @@ pub fn damping_force<S: Simd>(
     v: &[[f64; 3]; 8],
     beta: f64,
 ) -> [[f64; 3]; 8] {
-    let s = elastic_stress(lambda, mu, &point_strains(simd, geo, v));
+    let s = elastic_stress_lanes(simd, lambda, mu, &point_strains(simd, geo, v));
     let b = F64s::splat(beta);
     point_forces(simd, geo, &s.map(|x| b * x))
 }

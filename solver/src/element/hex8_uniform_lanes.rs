@@ -56,13 +56,15 @@ impl UniformBlock {
     }
 }
 
-/// [`crate::element::hex8_uniform::internal_force_in_place`] of the eight elements of `block`: nodal
+/// [`crate::element::hex8_uniform::internal_force_in_place`] of the eight elements of `block`
+/// (the material's arithmetic in the vectors of `simd`): nodal
 /// displacements `u` (one lane per element), initial strains `eps0` (if any), the
 /// elements' states `states[l]` updated in place with contexts `ctx[l]`. Returns the
 /// nodal forces in lanes and, per element, whether its hardening moved — bit for bit the
 /// scalar kernel's.
 #[inline(always)]
-pub fn internal_forces_in_place(
+pub fn internal_forces_in_place<S: Simd>(
+    simd: S,
     block: &UniformBlock,
     material: &Material,
     u: &NodalLanes,
@@ -77,7 +79,7 @@ pub fn internal_forces_in_place(
             eps[i] = eps[i] + e0[i];
         }
     }
-    let (sigma, moved) = material.update_elements_in_place(&eps, states, ctx);
+    let (sigma, moved) = material.update_elements_in_place(simd, &eps, states, ctx);
     // Hourglass stiffness of the damaged material: κ (1 − D), exactly κ when elastic.
     let mut factor = F64s::ZERO;
     for l in 0..LANES {
@@ -116,8 +118,9 @@ pub struct LaneKernel<'a, 's> {
 impl LaneWork for LaneKernel<'_, '_> {
     type Output = (NodalLanes, [bool; LANES]);
     #[inline(always)]
-    fn run<S: Simd>(self, _simd: S) -> Self::Output {
+    fn run<S: Simd>(self, simd: S) -> Self::Output {
         internal_forces_in_place(
+            simd,
             self.block,
             self.material,
             self.u,
@@ -217,9 +220,10 @@ mod tests {
     impl LaneWork for Lanes<'_> {
         type Output = (NodalLanes, [bool; LANES]);
         #[inline(always)]
-        fn run<S: Simd>(self, _simd: S) -> Self::Output {
+        fn run<S: Simd>(self, simd: S) -> Self::Output {
             let mut s = self.states.each_mut().map(|v| v.as_mut_slice());
             internal_forces_in_place(
+                simd,
                 self.block,
                 self.material,
                 self.u,

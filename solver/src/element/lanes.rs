@@ -305,26 +305,11 @@ impl Lane for F64s {
     }
 }
 
-/// Isotropic elastic stress σ = λ tr ε I + 2μ ε (engineering shear), for one point or
-/// lane-wise: `Elastic::stress` is this for `f64`.
-#[inline(always)]
-pub fn elastic_stress<T: Lane>(lambda: f64, mu: f64, e: &[T; 6]) -> [T; 6] {
-    let tr = e[0] + e[1] + e[2];
-    let l = T::splat(lambda) * tr;
-    let m2 = T::splat(2.0 * mu);
-    let mu = T::splat(mu);
-    [
-        l + m2 * e[0],
-        l + m2 * e[1],
-        l + m2 * e[2],
-        mu * e[3],
-        mu * e[4],
-        mu * e[5],
-    ]
-}
-
-/// [`elastic_stress`] in the vectors of `simd` (one vector of points): the same IEEE
-/// operations in the same order, so the same bits lane by lane.
+/// Isotropic elastic stress σ = λ tr ε I + 2μ ε (engineering shear) in the vectors of
+/// `simd`, one vector of points: the one spelling of it. Under `pulp::Scalar` (whose `f64s`
+/// is `f64` and whose operations are the plain IEEE ones) it is `Elastic::stress` of one
+/// point; in the dispatched vectors each lane performs the same operations in the same
+/// order, so the same bits.
 #[inline(always)]
 pub fn elastic_stress_in<S: Simd>(simd: S, lambda: f64, mu: f64, e: &[S::f64s; 6]) -> [S::f64s; 6] {
     let tr = simd.add_f64s(simd.add_f64s(e[0], e[1]), e[2]);
@@ -339,6 +324,23 @@ pub fn elastic_stress_in<S: Simd>(simd: S, lambda: f64, mu: f64, e: &[S::f64s; 6
         simd.mul_f64s(mu, e[4]),
         simd.mul_f64s(mu, e[5]),
     ]
+}
+
+/// [`elastic_stress_in`] of the eight lanes of `e`, one vector of `simd` at a time.
+#[inline(always)]
+pub fn elastic_stress_lanes<S: Simd>(simd: S, lambda: f64, mu: f64, e: &VoigtLanes) -> VoigtLanes {
+    let mut out = [F64s::ZERO; 6];
+    for p in 0..parts::<S>() {
+        let mut strain = [simd.splat_f64s(0.0); 6];
+        for (v, x) in strain.iter_mut().zip(e) {
+            *v = part::<S>(x, p);
+        }
+        let stress = elastic_stress_in(simd, lambda, mu, &strain);
+        for (o, s) in out.iter_mut().zip(stress) {
+            set_part::<S>(o, p, s);
+        }
+    }
+    out
 }
 
 #[cfg(test)]

@@ -77,7 +77,7 @@ impl Elastic {
     /// σ = E0 : ε in Voigt form (shear strains engineering, so τ = μ γ).
     #[inline(always)]
     pub fn stress(&self, e: &Voigt) -> Voigt {
-        crate::element::lanes::elastic_stress(self.lambda, self.mu, e)
+        crate::element::lanes::elastic_stress_in(pulp::Scalar::new(), self.lambda, self.mu, e)
     }
 
     /// ε = E0⁻¹ : σ (engineering shear).

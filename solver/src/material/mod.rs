@@ -13,7 +13,7 @@ pub mod elastic;
 pub mod plastic_damage;
 mod point_states;
 
-use crate::element::lanes::{elastic_stress, VoigtLanes, LANES};
+use crate::element::lanes::{elastic_stress_lanes, Simd, VoigtLanes, LANES};
 pub use elastic::Elastic;
 pub use plastic_damage::PlasticDamage;
 pub use point_states::{PointStates, StateAccess, MAX_ELEMENT_STATE};
@@ -143,15 +143,19 @@ impl Material {
     /// [`Material::update_in_place`] (the one-point elements in lanes,
     /// `element::hex8_uniform_lanes`).
     #[inline(always)]
-    pub fn update_elements_in_place(
+    pub fn update_elements_in_place<S: Simd>(
         &self,
+        simd: S,
         strain: &VoigtLanes,
         states: &mut [&mut [f64]; LANES],
         ctx: &[PointContext; LANES],
     ) -> (VoigtLanes, [bool; LANES]) {
         match self {
-            Material::Elastic(e) => (elastic_stress(e.lambda, e.mu, strain), [false; LANES]),
-            Material::PlasticDamage(p) => p.update_elements_in_place(strain, states, ctx),
+            Material::Elastic(e) => (
+                elastic_stress_lanes(simd, e.lambda, e.mu, strain),
+                [false; LANES],
+            ),
+            Material::PlasticDamage(p) => p.update_elements_in_place(simd, strain, states, ctx),
         }
     }
 

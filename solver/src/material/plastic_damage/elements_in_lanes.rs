@@ -6,8 +6,8 @@
 //! are those of eight calls of [`PlasticDamage::update_in_place`] bit for bit (tested in
 //! `element::hex8_uniform_lanes`).
 
-use super::{slot, virgin_bracket, write_virgin_lane, PlasticDamage};
-use crate::element::lanes::{elastic_stress, F64s, VoigtLanes, LANES};
+use super::{slot, virgin_bracket_lanes, write_virgin_lane, PlasticDamage};
+use crate::element::lanes::{elastic_stress_lanes, F64s, Simd, VoigtLanes, LANES};
 use crate::lanes8;
 use crate::material::{PointContext, Voigt};
 use seq_macro::seq;
@@ -23,8 +23,9 @@ impl PlasticDamage {
     /// element, bit for bit.
     #[inline(always)]
     #[allow(clippy::identity_op)] // `seq!` writes PLASTIC + 0 for the first component
-    pub fn update_elements_in_place(
+    pub fn update_elements_in_place<S: Simd>(
         &self,
+        simd: S,
         strain: &VoigtLanes,
         states: &mut [&mut [f64]; LANES],
         ctx: &[PointContext; LANES],
@@ -57,7 +58,7 @@ impl PlasticDamage {
                 trial[i] = strain[i] - plastic[i];
             }
             let el = &self.elastic;
-            let eff = elastic_stress(el.lambda, el.mu, &trial);
+            let eff = elastic_stress_lanes(simd, el.lambda, el.mu, &trial);
             let (beta, limit) = match self.virgin_bound {
                 Some((beta, limit)) => (F64s::splat(beta), F64s::splat(limit)),
                 None => {
@@ -68,7 +69,7 @@ impl PlasticDamage {
                     (beta, limit)
                 }
             };
-            let bracket = virgin_bracket(&self.surface, beta, &eff);
+            let bracket = virgin_bracket_lanes(simd, &self.surface, &beta, &eff);
             // The mask without branches (`&` on bools): finite strains ((ε − ε) = 0 is
             // false for ±∞ and NaN), β ≥ 0 and the bracket within the limit.
             let mut finite = [true; LANES];

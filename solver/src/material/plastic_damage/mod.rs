@@ -38,7 +38,7 @@ pub use hardening::{
 pub use params::{mohr_coulomb_fc, Constants, PlasticDamageParams};
 pub use recovery::Recovery;
 
-use crate::element::lanes::{Lane, Simd, VoigtLanes};
+use crate::element::lanes::{part, parts, set_part, F64s, Lane, Simd, VoigtLanes};
 use crate::error::{DcfmError, Result};
 use crate::material::{Elastic, PointContext, Voigt};
 use potential::Potential;
@@ -93,32 +93,17 @@ fn virgin_bound(surface: &YieldSurface, ct: f64, cc: f64) -> (f64, f64) {
     )
 }
 
-/// Upper bound of the bracket of eq. (25) at effective stress `eff` and β (one point, or one
-/// per lane), for the elastic shortcuts' check: F ≤ −margin c̄_c ⇔ bracket ≤ (1 − α)(1 − margin) c̄_c,
-/// with σ̂_max ≤ Ī₁/3 + (2/3)√(3J̄₂) (F does not decrease with σ̂_max when β ≥ 0). A decision
-/// with a margin: products instead of the quotients of `invariants`.
-#[inline(always)]
-fn virgin_bracket<T: Lane>(surface: &YieldSurface, beta: T, eff: &[T; 6]) -> T {
-    const THIRD: f64 = 1.0 / 3.0;
-    let i1 = eff[0] + eff[1] + eff[2];
-    let m = i1 * T::splat(THIRD);
-    let (a, b, c) = (eff[0] - m, eff[1] - m, eff[2] - m);
-    let ss = a * a
-        + b * b
-        + c * c
-        + T::splat(2.0) * (eff[3] * eff[3] + eff[4] * eff[4] + eff[5] * eff[5]);
-    let q = (T::splat(1.5) * ss).sqrt();
-    let smax = m + T::splat(2.0 * THIRD) * q;
-    let zero = T::splat(0.0);
-    T::splat(surface.alpha) * i1 + q + beta * smax.max(zero)
-        - T::splat(surface.gamma) * (-smax).max(zero)
-}
-
-/// [`virgin_bracket`] in the vectors of `simd` (one vector of points): the same IEEE
-/// operations in the same order. Only its comparison with the limit is used, and that is
-/// the same as [`virgin_bracket`]'s: the vector maximum differs from `f64::max` only in
-/// the sign of a zero (which a comparison ignores) and where σ̂_max is NaN, and then the
-/// bracket is NaN under either (σ̂_max is NaN only where Ī₁ or q is, and both enter it).
+/// Upper bound of the bracket of eq. (25) at effective stress `eff` and β, one vector of
+/// points in the vectors of `simd`, for the elastic shortcuts' check: F ≤ −margin c̄_c ⇔
+/// bracket ≤ (1 − α)(1 − margin) c̄_c, with σ̂_max ≤ Ī₁/3 + (2/3)√(3J̄₂) (F does not
+/// decrease with σ̂_max when β ≥ 0). A decision with a margin: products instead of the
+/// quotients of `invariants`. The one spelling of it: the scalar shortcuts call it under
+/// `pulp::Scalar` (`f64s` = `f64`, the plain IEEE operations and `f64::max`), the lanes in
+/// the dispatched vectors, where each lane performs the same operations in the same order.
+/// Only its comparison with the limit is used, and that is the scalar one lane by lane:
+/// a vector maximum differs from `f64::max` only in the sign of a zero (which a comparison
+/// ignores) and where σ̂_max is NaN, and then the bracket is NaN under either (σ̂_max is
+/// NaN only where Ī₁ or q is, and both enter it).
 #[inline(always)]
 fn virgin_bracket_in<S: Simd>(
     simd: S,
@@ -153,6 +138,27 @@ fn virgin_bracket_in<S: Simd>(
     );
     let linear = simd.add_f64s(simd.mul_f64s(simd.splat_f64s(surface.alpha), i1), q);
     simd.sub_f64s(simd.add_f64s(linear, tension), compression)
+}
+
+/// [`virgin_bracket_in`] of the eight lanes of `eff` with β per lane, one vector of `simd`
+/// at a time.
+#[inline(always)]
+fn virgin_bracket_lanes<S: Simd>(
+    simd: S,
+    surface: &YieldSurface,
+    beta: &F64s,
+    eff: &VoigtLanes,
+) -> F64s {
+    let mut bracket = F64s::ZERO;
+    for p in 0..parts::<S>() {
+        let mut stress = [simd.splat_f64s(0.0); 6];
+        for (v, x) in stress.iter_mut().zip(eff) {
+            *v = part::<S>(x, p);
+        }
+        let b = virgin_bracket_in(simd, surface, part::<S>(beta, p), &stress);
+        set_part::<S>(&mut bracket, p, b);
+    }
+    bracket
 }
 
 /// Allowance on the bracket of eq. (25) evaluated at closed-form principal values
@@ -502,7 +508,7 @@ impl PlasticDamage {
                 reads_damage,
             )
         };
-        if virgin_bracket(&self.surface, beta, &eff) <= limit {
+        if virgin_bracket_in(pulp::Scalar::new(), &self.surface, beta, &eff) <= limit {
             return Some(keep(None));
         }
         // F of eq. (25) at the exact values, inside by the bound's margin plus the allowance.
@@ -657,7 +663,7 @@ impl PlasticDamage {
             .elastic
             .stress(&sub(strain, &voigt(&old[slot::PLASTIC..])));
         let (beta, limit) = self.virgin_bound_for(l);
-        let bracket = virgin_bracket(&self.surface, beta, &eff);
+        let bracket = virgin_bracket_in(pulp::Scalar::new(), &self.surface, beta, &eff);
         (beta >= 0.0 && bracket <= limit).then_some(eff)
     }
 

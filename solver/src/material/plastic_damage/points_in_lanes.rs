@@ -11,8 +11,8 @@
 
 use super::recovery_in_lanes::consistent_stress_lanes;
 use super::{
-    dissipated_after, slot, virgin_bound, virgin_bracket, virgin_bracket_in, write_virgin_lane,
-    PlasticDamage, Recovery,
+    dissipated_after, slot, virgin_bound, virgin_bracket_in, virgin_bracket_lanes,
+    write_virgin_lane, PlasticDamage, Recovery,
 };
 use crate::element::lanes::{
     elastic_stress_in, part, parts, set_part, F64s, Simd, VoigtLanes, LANES,
@@ -117,8 +117,9 @@ impl PlasticDamage {
     /// read take the scalar path, which decides as before. `eff`: σ̄ = E₀ : (ε − εᵖ) per lane
     /// ([`Self::virgin_lanes`]). Reads the states only.
     #[inline(always)]
-    fn yielded_lanes(
+    fn yielded_lanes<S: Simd>(
         &self,
+        simd: S,
         strain: &VoigtLanes,
         eff: &VoigtLanes,
         states: &[f64],
@@ -160,7 +161,7 @@ impl PlasticDamage {
             let (b, lim) = virgin_bound(&self.surface, ct, cc);
             (beta[g], limit[g], d_t[g], d_c[g]) = (b, lim, dt, dc);
         }
-        let bracket = virgin_bracket(&self.surface, beta, eff);
+        let bracket = virgin_bracket_lanes(simd, &self.surface, &beta, eff);
         let mut any = false;
         for g in 0..LANES {
             out.pass[g] = candidate[g] && beta[g] >= 0.0 && bracket[g] <= limit[g];
@@ -239,7 +240,7 @@ impl PlasticDamage {
             }
             return eff;
         }
-        let yielded = self.yielded_lanes(strain, &eff, old, &pass, ctx);
+        let yielded = self.yielded_lanes(simd, strain, &eff, old, &pass, ctx);
         let mut sigma = [F64s::ZERO; 6];
         for (g, (o, n)) in old.chunks_exact(N).zip(new.chunks_exact_mut(N)).enumerate() {
             if pass[g] {
@@ -290,7 +291,7 @@ impl PlasticDamage {
             }
             return (eff, false);
         }
-        let yielded = self.yielded_lanes(strain, &eff, states, &pass, ctx);
+        let yielded = self.yielded_lanes(simd, strain, &eff, states, &pass, ctx);
         let mut sigma = [F64s::ZERO; 6];
         let mut moved = false;
         for (g, n) in states.chunks_exact_mut(N).enumerate() {

@@ -1044,7 +1044,7 @@ fn yielded_elastic_shortcut_is_the_general_update_bit_for_bit() {
                     t.law.effective(start.y_t),
                     cl.law.effective(start.y_c),
                 );
-                if virgin_bracket(&m.surface, beta, &eff) <= limit {
+                if virgin_bracket_in(pulp::Scalar::new(), &m.surface, beta, &eff) <= limit {
                     bound += 1;
                 } else {
                     exact += 1;

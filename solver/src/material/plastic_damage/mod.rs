@@ -217,6 +217,36 @@ impl Internal {
     }
 }
 
+/// What [`PlasticDamage::yielded_elastic`] decided.
+enum Shortcut {
+    /// The shortcut was taken: the nominal stress (the state is written).
+    Taken(Voigt),
+    /// The general path decides, with the principal values of the trial stress when the
+    /// shortcut formed them.
+    Declined(Option<KnownTrial>),
+}
+
+/// Principal values of a trial effective stress σ̄ = E₀ : (ε − εᵖ) already formed, with the
+/// strain and plastic strain it was formed from, so that the return mapping can take them
+/// instead of forming them again ([`principal_values`]: an `acos` and three `cos`).
+#[derive(Clone, Copy)]
+struct KnownTrial {
+    strain: Voigt,
+    plastic: Voigt,
+    values: [f64; 3],
+}
+
+impl KnownTrial {
+    /// Whether the trial stress at total strain `eps` and plastic strain `plastic` is this
+    /// one: the same inputs bit for bit (then the same σ̄, and the same principal values,
+    /// bit for bit; a sign of zero or a NaN payload differs, so no `==` on the values).
+    #[inline(always)]
+    fn is_trial_of(&self, eps: &Voigt, plastic: &Voigt) -> bool {
+        let same = |a: &Voigt, b: &Voigt| a.iter().zip(b).all(|(x, y)| x.to_bits() == y.to_bits());
+        same(&self.strain, eps) && same(&self.plastic, plastic)
+    }
+}
+
 impl PlasticDamage {
     /// Validate the parameters of material `name` (errors: [`DcfmError::Material`]).
     pub fn new(name: &str, elastic: Elastic, p: &PlasticDamageParams) -> Result<Self> {
@@ -352,7 +382,13 @@ impl PlasticDamage {
 
     /// One backward-Euler return to total strain `eps`; `false` if the local solve did
     /// not converge.
-    fn return_map(&self, pb: &LocalProblem, eps: &Voigt, st: &Internal) -> (Internal, bool) {
+    fn return_map(
+        &self,
+        pb: &LocalProblem,
+        eps: &Voigt,
+        st: &Internal,
+        known: Option<&KnownTrial>,
+    ) -> (Internal, bool) {
         let trial = self.elastic.stress(&sub(eps, &st.plastic));
         // Cheap check on the invariants first; the eigenvalues only near the surface.
         let (i1, q) = invariants(&trial);
@@ -364,7 +400,10 @@ impl PlasticDamage {
         {
             return (*st, true);
         }
-        let values = principal_values(&trial);
+        let values = match known {
+            Some(k) if k.is_trial_of(eps, &st.plastic) => k.values,
+            _ => principal_values(&trial),
+        };
         if self.surface.value(&values, ct, cc) <= 0.0 {
             return (*st, true);
         }
@@ -401,6 +440,7 @@ impl PlasticDamage {
         eps0: &Voigt,
         eps: &Voigt,
         start: &Internal,
+        known: Option<&KnownTrial>,
     ) -> Internal {
         let mut last = *start;
         for &n in SUBSTEPS.iter() {
@@ -412,7 +452,7 @@ impl PlasticDamage {
                 for i in 0..6 {
                     e[i] = eps0[i] + t * (eps[i] - eps0[i]);
                 }
-                let (next, conv) = self.return_map(pb, &e, &st);
+                let (next, conv) = self.return_map(pb, &e, &st, known);
                 st = next;
                 ok &= conv;
             }
@@ -446,10 +486,15 @@ impl PlasticDamage {
             if let Some(sig) = self.virgin_elastic(strain, old, new, l) {
                 return sig;
             }
-        } else if let Some(sig) = self.yielded_elastic(strain, old, new, l, ctx.reads_damage) {
-            return sig;
+            self.general_update(strain, old, new, ctx.dt, l, ctx.reads_damage)
+        } else {
+            match self.yielded_elastic(strain, old, new, l, ctx.reads_damage) {
+                Shortcut::Taken(sig) => sig,
+                Shortcut::Declined(known) => {
+                    self.general_update_with(strain, old, new, (ctx.dt, l, ctx.reads_damage), known)
+                }
+            }
         }
-        self.general_update(strain, old, new, ctx.dt, l, ctx.reads_damage)
     }
 
     /// The update of a point that has yielded (y_t or y_c > 0) and whose trial stress is
@@ -465,8 +510,9 @@ impl PlasticDamage {
     /// [`Self::virgin_elastic`] — that path finds the trial elastic too (the margins
     /// cover its trial strain ε₀ + 1·(ε − ε₀), which may differ from ε by rounding, and
     /// the rounding of the closed-form principal values) and then keeps the start state.
-    /// The branch most points of a damaged region take in most steps. `None`: take the
-    /// general path.
+    /// The branch most points of a damaged region take in most steps.
+    /// [`Shortcut::Declined`]: take the general path (with the exact test's principal
+    /// values when it formed them).
     #[inline]
     fn yielded_elastic(
         &self,
@@ -475,7 +521,7 @@ impl PlasticDamage {
         new: &mut [f64],
         l: f64,
         reads_damage: bool,
-    ) -> Option<Voigt> {
+    ) -> Shortcut {
         let start = Internal::of(old);
         let eff = self.elastic.stress(&sub(strain, &start.plastic));
         let (t, c) = self.element_laws(l);
@@ -489,7 +535,7 @@ impl PlasticDamage {
         // NaN) takes the general path, as it always has.
         let monotone = beta >= 0.0;
         if !monotone {
-            return None;
+            return Shortcut::Declined(None);
         }
         let laws = [(&t.law, t.g), (&c.law, c.g)];
         // The state kept, at the new strain: the tail of the general path for an unchanged
@@ -509,7 +555,7 @@ impl PlasticDamage {
             )
         };
         if virgin_bracket_in(pulp::Scalar::new(), &self.surface, beta, &eff) <= limit {
-            return Some(keep(None));
+            return Shortcut::Taken(keep(None));
         }
         // F of eq. (25) at the exact values, inside by the bound's margin plus the allowance.
         let values = principal_values(&eff);
@@ -517,9 +563,13 @@ impl PlasticDamage {
             + exact_bracket_margin(&self.surface, beta, &values) / (1.0 - self.surface.alpha);
         let inside = self.surface.value(&values, ct, cc) + allowance <= 0.0;
         if !inside {
-            return None;
+            return Shortcut::Declined(Some(KnownTrial {
+                strain: *strain,
+                plastic: start.plastic,
+                values,
+            }));
         }
-        Some(keep(Some(values)))
+        Shortcut::Taken(keep(Some(values)))
     }
 
     /// [`Self::update`] by the return mapping (no shortcut) at characteristic length `l`.
@@ -532,10 +582,25 @@ impl PlasticDamage {
         l: f64,
         reads_damage: bool,
     ) -> Voigt {
+        self.general_update_with(strain, old, new, (dt, l, reads_damage), None)
+    }
+
+    /// [`Self::general_update`] (Δt, l and whether D is read in `(dt, l, reads_damage)`)
+    /// given the principal values of a trial stress the caller has already formed
+    /// (`known`, [`Self::yielded_elastic`]'s exact test): the return mapping takes them
+    /// instead of forming them again where its trial is that one bit for bit.
+    fn general_update_with(
+        &self,
+        strain: &Voigt,
+        old: &[f64],
+        new: &mut [f64],
+        (dt, l, reads_damage): (f64, f64, bool),
+        known: Option<KnownTrial>,
+    ) -> Voigt {
         let pb = self.problem(l);
         let start = Internal::of(old);
         let eps0 = voigt(&old[slot::STRAIN..]);
-        let mut st = self.integrate(&pb, &eps0, strain, &start);
+        let mut st = self.integrate(&pb, &eps0, strain, &start, known.as_ref());
 
         // Duvaut–Lions: x' = (x_n − x_∞)/η ⇒ x_{n+1} = x_n + w (x_∞ − x_n), w = Δt/(η + Δt).
         if self.constants.viscosity > 0.0 {

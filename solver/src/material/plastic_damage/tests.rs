@@ -612,12 +612,12 @@ fn sub_stepping_rescues_a_local_solve_that_does_not_converge() {
         y_c: 0.0,
     };
     let eps = [-1.5e-3, 3e-4, 2e-4, 4e-4, -1e-4, 2e-4];
-    let exact = m.integrate(&m.problem(l), &[0.0; 6], &eps, &start);
+    let exact = m.integrate(&m.problem(l), &[0.0; 6], &eps, &start, None);
     let mut capped = m.problem(l);
     capped.max_iter = 2;
-    let (one, ok) = m.return_map(&capped, &eps, &start);
+    let (one, ok) = m.return_map(&capped, &eps, &start, None);
     assert!(!ok, "the capped solve should fail in one step");
-    let rescued = m.integrate(&capped, &[0.0; 6], &eps, &start);
+    let rescued = m.integrate(&capped, &[0.0; 6], &eps, &start, None);
     assert!(rescued.plastic.iter().all(|v| v.is_finite()));
     let mut st = vec![0.0; m.state_len()];
     st[slot::PLASTIC..slot::PLASTIC + 6].copy_from_slice(&rescued.plastic);
@@ -1031,8 +1031,8 @@ fn yielded_elastic_shortcut_is_the_general_update_bit_for_bit() {
             });
             let (b, _) = updates_agree(&m, &strain, &old, &ctx, &format!("{reg:?} {rec:?}"));
             let mut c = vec![0.0; m.state_len()];
-            if m.yielded_elastic(&strain, &old, &mut c, ctx.char_length, ctx.reads_damage)
-                .is_some()
+            if let Shortcut::Taken(_) =
+                m.yielded_elastic(&strain, &old, &mut c, ctx.char_length, ctx.reads_damage)
             {
                 assert!(!m.hardening_moved(&old, &b));
                 // Which of the two tests took it: the invariant bound alone?

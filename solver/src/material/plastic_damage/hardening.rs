@@ -44,11 +44,24 @@ impl SofteningLaw {
     }
 
     /// Effective strength f̄ = f/(1 − D) at y (Pa): the cohesion c̄ of the yield function.
+    /// With r = 1 (d = b, the default of both laws) one exponential: e^(−(1−r)y) = e^(−0)
+    /// = 1 exactly, so (1+a)·1 = 1+a, and e^(−(2−r)y) = e^(−y), the same argument rounded
+    /// the same way — the two-exponential form bit for bit (a non-finite y, where 0·y is
+    /// NaN, takes that form).
     #[inline]
     pub fn effective(&self, y: f64) -> f64 {
         if y == 0.0 {
             return self.f0;
         }
+        if self.r == 1.0 && y.is_finite() {
+            return self.f0 * ((1.0 + self.a) - self.a * (-y).exp());
+        }
+        self.effective_two_exponentials(y)
+    }
+
+    /// f̄(y) = f₀ [(1+a) e^(−(1−r)y) − a e^(−(2−r)y)] as written, for any r (y ≠ 0).
+    #[inline]
+    fn effective_two_exponentials(&self, y: f64) -> f64 {
         let r = self.r;
         self.f0 * ((1.0 + self.a) * (-(1.0 - r) * y).exp() - self.a * (-(2.0 - r) * y).exp())
     }
@@ -73,6 +86,21 @@ impl SofteningLaw {
             (self.f0 * ((1.0 + self.a) - self.a * e), 1.0 - e)
         } else {
             (self.effective(y), self.damage(y))
+        }
+    }
+
+    /// [`Self::damage`] and [`Self::kappa`] at one y, bit for bit theirs. With r = 1 the
+    /// damage's e^(−r y) is e^(−y) (r·y = y exactly), κ's exponential; any other r (or a
+    /// non-finite y) takes the two functions.
+    #[inline]
+    pub fn damage_and_kappa(&self, y: f64) -> (f64, f64) {
+        if self.r == 1.0 && y.is_finite() {
+            let e = (-y).exp();
+            let a = self.a;
+            let kappa = ((1.0 + a) * (1.0 - e) - 0.5 * a * (1.0 - e * e)) / (1.0 + 0.5 * a);
+            (if y == 0.0 { 0.0 } else { 1.0 - e }, kappa)
+        } else {
+            (self.damage(y), self.kappa(y))
         }
     }
 
@@ -319,26 +347,32 @@ mod tests {
     }
 
     proptest::proptest! {
-        /// The shared-exponential evaluation is the two separate functions bit for bit, for
-        /// r = 1 (one exponential) and any other r (the separate functions), over the
-        /// scaled plastic strains a run reaches, down to saturation (e^(−y) below 2⁻⁵³).
+        /// The one-exponential forms of r = 1 are the written formulas bit for bit — f̄
+        /// against its two-exponential form, (c̄, D) and (D, κ) against the separate
+        /// functions — for r = 1 and any other r (the written formulas), over the scaled
+        /// plastic strains a run reaches, down to saturation (e^(−y) below 2⁻⁵³).
         #[test]
-        fn effective_and_damage_is_the_separate_functions_bit_for_bit(
+        fn one_exponential_forms_are_the_written_formulas_bit_for_bit(
             f0 in 1.0e5f64..1.0e8,
             a in 0.0f64..8.0,
             r_is_one in proptest::bool::ANY,
             r_other in 0.05f64..0.999,
-            y in proptest::prop_oneof![0.0f64..1.0, 0.0f64..60.0, proptest::strategy::Just(0.0)],
+            y in proptest::prop_oneof![0.0f64..1.0, 0.0f64..60.0, 1e-300f64..1e-10, proptest::strategy::Just(0.0)],
         ) {
             let law = SofteningLaw { f0, a, r: if r_is_one { 1.0 } else { r_other }, g_f: 100.0 };
+            let written = if y == 0.0 { law.f0 } else { law.effective_two_exponentials(y) };
+            proptest::prop_assert_eq!(law.effective(y).to_bits(), written.to_bits(), "c̄ at y = {}", y);
             let (c, d) = law.effective_and_damage(y);
-            proptest::prop_assert_eq!(c.to_bits(), law.effective(y).to_bits(), "c̄ at y = {}", y);
+            proptest::prop_assert_eq!(c.to_bits(), written.to_bits(), "c̄ at y = {}", y);
             proptest::prop_assert_eq!(d.to_bits(), law.damage(y).to_bits(), "D at y = {}", y);
+            let (d, kappa) = law.damage_and_kappa(y);
+            proptest::prop_assert_eq!(d.to_bits(), law.damage(y).to_bits(), "D at y = {}", y);
+            proptest::prop_assert_eq!(kappa.to_bits(), law.kappa(y).to_bits(), "κ at y = {}", y);
         }
     }
 
     #[test]
-    fn effective_and_damage_keeps_the_separate_functions_at_non_finite_y() {
+    fn one_exponential_forms_keep_the_written_formulas_at_non_finite_y() {
         let law = SofteningLaw {
             f0: 2.0e6,
             a: 0.5,
@@ -346,9 +380,14 @@ mod tests {
             g_f: 100.0,
         };
         for y in [f64::INFINITY, f64::NAN] {
+            let written = law.effective_two_exponentials(y);
+            assert_eq!(law.effective(y).to_bits(), written.to_bits());
             let (c, d) = law.effective_and_damage(y);
-            assert_eq!(c.to_bits(), law.effective(y).to_bits());
+            assert_eq!(c.to_bits(), written.to_bits());
             assert_eq!(d.to_bits(), law.damage(y).to_bits());
+            let (d, kappa) = law.damage_and_kappa(y);
+            assert_eq!(d.to_bits(), law.damage(y).to_bits());
+            assert_eq!(kappa.to_bits(), law.kappa(y).to_bits());
         }
     }
 }

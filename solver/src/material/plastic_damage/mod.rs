@@ -43,7 +43,7 @@ use crate::error::{DcfmError, Result};
 use crate::material::{Elastic, PointContext, Voigt};
 use potential::Potential;
 use principal::{definiteness, principal_values, Definiteness, Spectral};
-use return_mapping::LocalProblem;
+use return_mapping::{LocalProblem, Start};
 use yield_surface::{invariants, YieldSurface};
 
 /// Layout of the per-point state.
@@ -221,9 +221,19 @@ impl Internal {
 enum Shortcut {
     /// The shortcut was taken: the nominal stress (the state is written).
     Taken(Voigt),
-    /// The general path decides, with the principal values of the trial stress when the
-    /// shortcut formed them.
-    Declined(Option<KnownTrial>),
+    /// The general path decides, with what the shortcut already formed.
+    Declined(Known),
+}
+
+/// What the general path can take from [`PlasticDamage::yielded_elastic`] instead of
+/// forming it again; nothing by default.
+#[derive(Clone, Copy, Default)]
+struct Known {
+    /// The start state's hardening variables and their cohesions c̄_t, c̄_c
+    /// ([`LocalProblem::start`] of them, bit for bit).
+    start: Option<Start>,
+    /// The principal values of the trial stress, when the exact test formed them.
+    trial: Option<KnownTrial>,
 }
 
 /// Principal values of a trial effective stress σ̄ = E₀ : (ε − εᵖ) already formed, with the
@@ -381,18 +391,25 @@ impl PlasticDamage {
     }
 
     /// One backward-Euler return to total strain `eps`; `false` if the local solve did
-    /// not converge.
+    /// not converge. `first`: [`LocalProblem::start`] of the state the step starts from,
+    /// taken where `st` has its hardening variables bit for bit (the same cohesions).
     fn return_map(
         &self,
         pb: &LocalProblem,
         eps: &Voigt,
         st: &Internal,
+        first: &Start,
         known: Option<&KnownTrial>,
     ) -> (Internal, bool) {
         let trial = self.elastic.stress(&sub(eps, &st.plastic));
         // Cheap check on the invariants first; the eigenvalues only near the surface.
         let (i1, q) = invariants(&trial);
-        let start = pb.start(st.y_t, st.y_c);
+        let start =
+            if st.y_t.to_bits() == first.y_t.to_bits() && st.y_c.to_bits() == first.y_c.to_bits() {
+                *first
+            } else {
+                pb.start(st.y_t, st.y_c)
+            };
         let (ct, cc) = (start.ct, start.cc);
         if self.surface.surely_inside(i1, q, ct, cc)
             || (definiteness(&trial) == Definiteness::NonPositive
@@ -433,15 +450,19 @@ impl PlasticDamage {
         )
     }
 
-    /// Inviscid state at `eps` from `start` (strain `eps0`), sub-stepping on failure.
+    /// Inviscid state at `eps` from `start` (strain `eps0`), sub-stepping on failure;
+    /// with what [`Self::yielded_elastic`] formed (`known`).
     fn integrate(
         &self,
         pb: &LocalProblem,
         eps0: &Voigt,
         eps: &Voigt,
         start: &Internal,
-        known: Option<&KnownTrial>,
+        known: &Known,
     ) -> Internal {
+        let first = known
+            .start
+            .unwrap_or_else(|| pb.start(start.y_t, start.y_c));
         let mut last = *start;
         for &n in SUBSTEPS.iter() {
             let mut st = *start;
@@ -452,7 +473,7 @@ impl PlasticDamage {
                 for i in 0..6 {
                     e[i] = eps0[i] + t * (eps[i] - eps0[i]);
                 }
-                let (next, conv) = self.return_map(pb, &e, &st, known);
+                let (next, conv) = self.return_map(pb, &e, &st, &first, known.trial.as_ref());
                 st = next;
                 ok &= conv;
             }
@@ -534,8 +555,19 @@ impl PlasticDamage {
         // The bound needs F non-decreasing in σ̂_max (β ≥ 0): any other point (β < 0 or
         // NaN) takes the general path, as it always has.
         let monotone = beta >= 0.0;
+        // The local problem's start from this state: these cohesions, bit for bit
+        // (`effective_and_damage` is `effective`, and `t`, `c` the problem's laws).
+        let known_start = Some(Start {
+            y_t: start.y_t,
+            y_c: start.y_c,
+            ct,
+            cc,
+        });
         if !monotone {
-            return Shortcut::Declined(None);
+            return Shortcut::Declined(Known {
+                start: known_start,
+                trial: None,
+            });
         }
         let laws = [(&t.law, t.g), (&c.law, c.g)];
         // The state kept, at the new strain: the tail of the general path for an unchanged
@@ -549,7 +581,7 @@ impl PlasticDamage {
                 &start,
                 eff,
                 laws,
-                (d_t, d_c),
+                ((d_t, d_c), None),
                 values,
                 reads_damage,
             )
@@ -563,11 +595,14 @@ impl PlasticDamage {
             + exact_bracket_margin(&self.surface, beta, &values) / (1.0 - self.surface.alpha);
         let inside = self.surface.value(&values, ct, cc) + allowance <= 0.0;
         if !inside {
-            return Shortcut::Declined(Some(KnownTrial {
-                strain: *strain,
-                plastic: start.plastic,
-                values,
-            }));
+            return Shortcut::Declined(Known {
+                start: known_start,
+                trial: Some(KnownTrial {
+                    strain: *strain,
+                    plastic: start.plastic,
+                    values,
+                }),
+            });
         }
         Shortcut::Taken(keep(Some(values)))
     }
@@ -582,25 +617,26 @@ impl PlasticDamage {
         l: f64,
         reads_damage: bool,
     ) -> Voigt {
-        self.general_update_with(strain, old, new, (dt, l, reads_damage), None)
+        self.general_update_with(strain, old, new, (dt, l, reads_damage), Known::default())
     }
 
     /// [`Self::general_update`] (Δt, l and whether D is read in `(dt, l, reads_damage)`)
-    /// given the principal values of a trial stress the caller has already formed
-    /// (`known`, [`Self::yielded_elastic`]'s exact test): the return mapping takes them
-    /// instead of forming them again where its trial is that one bit for bit.
+    /// given what the caller has already formed (`known`, [`Self::yielded_elastic`]): the
+    /// start state's cohesions, and the principal values of a trial stress, which the
+    /// return mapping takes instead of forming them again where its trial is that one bit
+    /// for bit.
     fn general_update_with(
         &self,
         strain: &Voigt,
         old: &[f64],
         new: &mut [f64],
         (dt, l, reads_damage): (f64, f64, bool),
-        known: Option<KnownTrial>,
+        known: Known,
     ) -> Voigt {
         let pb = self.problem(l);
         let start = Internal::of(old);
         let eps0 = voigt(&old[slot::STRAIN..]);
-        let mut st = self.integrate(&pb, &eps0, strain, &start, known.as_ref());
+        let mut st = self.integrate(&pb, &eps0, strain, &start, &known);
 
         // Duvaut–Lions: x' = (x_n − x_∞)/η ⇒ x_{n+1} = x_n + w (x_∞ − x_n), w = Δt/(η + Δt).
         if self.constants.viscosity > 0.0 {
@@ -618,7 +654,11 @@ impl PlasticDamage {
 
         let eff = self.elastic.stress(&sub(strain, &st.plastic));
         let laws = [(&pb.tension, pb.g_t), (&pb.compression, pb.g_c)];
-        let damage = self.damages(st.y_t, st.y_c);
+        // D (eq. 24) and κ at the end state from one exponential per law where r = 1
+        // (bit for bit `damages` and `kappa`: the element laws differ from the material's
+        // in f₀ only).
+        let (d_t, kappa_t) = self.constants.tension.damage_and_kappa(st.y_t);
+        let (d_c, kappa_c) = self.constants.compression.damage_and_kappa(st.y_c);
         self.commit(
             strain,
             old,
@@ -627,7 +667,7 @@ impl PlasticDamage {
             &st,
             eff,
             laws,
-            damage,
+            ((d_t, d_c), Some((kappa_t, kappa_c))),
             None,
             reads_damage,
         )
@@ -637,8 +677,10 @@ impl PlasticDamage {
     /// (state `old`) to `st` with effective stress `eff` = E₀ : (ε − εᵖ) at strain
     /// `strain`, for the element laws `laws` (tension, compression: the softening law and
     /// its dissipation density g of [`ElementLaw`]): the tail of
-    /// [`Self::general_update`] (eqs. 23–24 and the tracked energies). `damage`: (D_t, D_c)
-    /// of eq. (24) at `st` ([`Self::damages`], bit for bit). `values`: the
+    /// [`Self::general_update`] (eqs. 23–24 and the tracked energies). `at_end`: (D_t, D_c)
+    /// of eq. (24) at `st` ([`Self::damages`], bit for bit) and, when the caller has them,
+    /// (κ_t, κ_c) at `st` ([`SofteningLaw::kappa`], bit for bit; else formed where a
+    /// hardening variable moved). `values`: the
     /// principal values of `eff` when the caller has them ([`principal_values`], the
     /// recovery's own values bit for bit), else `None`. `reads_damage`: store D under
     /// every rule ([`PointContext::reads_damage`]).
@@ -653,7 +695,7 @@ impl PlasticDamage {
         st: &Internal,
         eff: Voigt,
         laws: [(&SofteningLaw, f64); 2],
-        damage: (f64, f64),
+        (damage, kappa_end): ((f64, f64), Option<(f64, f64)>),
         values: Option<[f64; 3]>,
         reads_damage: bool,
     ) -> Voigt {
@@ -671,10 +713,12 @@ impl PlasticDamage {
         new[slot::DAMAGE] = d;
         let mut w = old[slot::FRACTURE];
         if st.y_t != start.y_t {
-            w += g_t * (t.kappa(st.y_t) - t.kappa(start.y_t));
+            let kappa = kappa_end.map_or_else(|| t.kappa(st.y_t), |k| k.0);
+            w += g_t * (kappa - t.kappa(start.y_t));
         }
         if st.y_c != start.y_c {
-            w += g_c * (c.kappa(st.y_c) - c.kappa(start.y_c));
+            let kappa = kappa_end.map_or_else(|| c.kappa(st.y_c), |k| k.1);
+            w += g_c * (kappa - c.kappa(start.y_c));
         }
         new[slot::FRACTURE] = w;
         // Total dissipation: trapezoidal work ½(σₙ + σₙ₊₁):Δε minus the change of the

@@ -612,12 +612,12 @@ fn sub_stepping_rescues_a_local_solve_that_does_not_converge() {
         y_c: 0.0,
     };
     let eps = [-1.5e-3, 3e-4, 2e-4, 4e-4, -1e-4, 2e-4];
-    let exact = m.integrate(&m.problem(l), &[0.0; 6], &eps, &start, None);
+    let exact = m.integrate(&m.problem(l), &[0.0; 6], &eps, &start, &Known::default());
     let mut capped = m.problem(l);
     capped.max_iter = 2;
-    let (one, ok) = m.return_map(&capped, &eps, &start, None);
+    let (one, ok) = m.return_map(&capped, &eps, &start, &capped.start(0.0, 0.0), None);
     assert!(!ok, "the capped solve should fail in one step");
-    let rescued = m.integrate(&capped, &[0.0; 6], &eps, &start, None);
+    let rescued = m.integrate(&capped, &[0.0; 6], &eps, &start, &Known::default());
     assert!(rescued.plastic.iter().all(|v| v.is_finite()));
     let mut st = vec![0.0; m.state_len()];
     st[slot::PLASTIC..slot::PLASTIC + 6].copy_from_slice(&rescued.plastic);

@@ -53,10 +53,22 @@ impl SofteningLaw {
         if y == 0.0 {
             return self.f0;
         }
-        if self.r == 1.0 && y.is_finite() {
-            return self.f0 * ((1.0 + self.a) - self.a * (-y).exp());
+        if self.takes_one_exponential(y) {
+            return self.effective_of_exp((-y).exp());
         }
         self.effective_two_exponentials(y)
+    }
+
+    /// Whether the laws at y follow from e^(−y) alone, bit for bit: r = 1 and y finite.
+    #[inline(always)]
+    fn takes_one_exponential(&self, y: f64) -> bool {
+        self.r == 1.0 && y.is_finite()
+    }
+
+    /// f̄ for r = 1 from e = e^(−y): f₀ [(1+a) − a e].
+    #[inline(always)]
+    fn effective_of_exp(&self, e: f64) -> f64 {
+        self.f0 * ((1.0 + self.a) - self.a * e)
     }
 
     /// f̄(y) = f₀ [(1+a) e^(−(1−r)y) − a e^(−(2−r)y)] as written, for any r (y ≠ 0).
@@ -81,9 +93,9 @@ impl SofteningLaw {
     /// way; any other r (or a non-finite y, where 0·y is NaN) takes the two functions.
     #[inline]
     pub fn effective_and_damage(&self, y: f64) -> (f64, f64) {
-        if self.r == 1.0 && y != 0.0 && y.is_finite() {
+        if y != 0.0 && self.takes_one_exponential(y) {
             let e = (-y).exp();
-            (self.f0 * ((1.0 + self.a) - self.a * e), 1.0 - e)
+            (self.effective_of_exp(e), 1.0 - e)
         } else {
             (self.effective(y), self.damage(y))
         }
@@ -94,11 +106,9 @@ impl SofteningLaw {
     /// non-finite y) takes the two functions.
     #[inline]
     pub fn damage_and_kappa(&self, y: f64) -> (f64, f64) {
-        if self.r == 1.0 && y.is_finite() {
+        if self.takes_one_exponential(y) {
             let e = (-y).exp();
-            let a = self.a;
-            let kappa = ((1.0 + a) * (1.0 - e) - 0.5 * a * (1.0 - e * e)) / (1.0 + 0.5 * a);
-            (if y == 0.0 { 0.0 } else { 1.0 - e }, kappa)
+            (if y == 0.0 { 0.0 } else { 1.0 - e }, self.kappa_of_exp(e))
         } else {
             (self.damage(y), self.kappa(y))
         }
@@ -107,7 +117,12 @@ impl SofteningLaw {
     /// Normalised dissipated energy κ(y) = [(1+a)(1−e^(−y)) − (a/2)(1−e^(−2y))]/(1 + a/2).
     #[inline]
     pub fn kappa(&self, y: f64) -> f64 {
-        let e = (-y).exp();
+        self.kappa_of_exp((-y).exp())
+    }
+
+    /// κ from e = e^(−y).
+    #[inline(always)]
+    fn kappa_of_exp(&self, e: f64) -> f64 {
         ((1.0 + self.a) * (1.0 - e) - 0.5 * self.a * (1.0 - e * e)) / (1.0 + 0.5 * self.a)
     }
 

@@ -391,7 +391,7 @@ mod tests {
         material: &Material,
         mag: (f64, f64),
         draws: usize,
-        seed: u64,
+        (seed, reads_damage): (u64, bool),
     ) -> (usize, usize, [bool; 2], usize) {
         let mut rng = Lcg(seed);
         let stride = material.state_len();
@@ -411,7 +411,7 @@ mod tests {
             let ctx = PointContext {
                 char_length: 0.1 + rng.next(),
                 dt: 1e-4,
-                reads_damage: false,
+                reads_damage,
             };
             // Three steps: from the virgin state, then from the state the first left (some
             // points yielded and damaged) to a larger displacement, then back to a smaller
@@ -513,7 +513,7 @@ mod tests {
             &Material::Elastic(elastic),
             (1e-6, 1e-2),
             300,
-            0x5eed_1234_abcd_0001,
+            (0x5eed_1234_abcd_0001, false),
         );
     }
 
@@ -521,16 +521,21 @@ mod tests {
     fn lanes_give_the_scalar_forces_and_states_bit_for_bit_for_plastic_damage() {
         // Displacements from well inside the elastic range to cracking and crushing
         // (ε_t0 ≈ 1e-4 on ≈ 1 m elements).
+        // The Lee–Fenves rule (the default), whose damaged points inside their surface take
+        // the yielded-elastic shortcut in lanes whether or not the element reads D.
         let (material, _) = cracking_concrete();
-        let (damaged, intact, moved_seen, _) =
-            compare(&material, (1e-6, 3e-3), 300, 0x0dd_ba11_cafe_0002);
-        // Both the never-yielded shortcut and the return mapping are exercised, and the
-        // in-place kernel saw elements whose hardening moved and elements whose did not.
-        assert!(
-            damaged > 500 && intact > 500,
-            "{damaged} damaged, {intact} intact points"
-        );
-        assert_eq!(moved_seen, [true, true]);
+        for (seed, reads_damage) in [(0x0dd_ba11_cafe_0002, false), (0x0dd_ba11_cafe_0004, true)] {
+            let (damaged, intact, moved_seen, kept) =
+                compare(&material, (1e-6, 3e-3), 300, (seed, reads_damage));
+            // Both the never-yielded shortcut and the return mapping are exercised, damaged
+            // points keep their hardening, and the in-place kernel saw elements whose
+            // hardening moved and elements whose did not.
+            assert!(
+                damaged > 500 && intact > 500 && kept > 300,
+                "{damaged} damaged, {intact} intact points, {kept} damaged and kept"
+            );
+            assert_eq!(moved_seen, [true, true]);
+        }
     }
 
     /// The consistent recovery rule (the Yingxiuwan concrete's), whose damaged points
@@ -547,7 +552,7 @@ mod tests {
         let pd = crate::material::PlasticDamage::new("concrete", el, &params).unwrap();
         let material = Material::PlasticDamage(Box::new(pd));
         let (damaged, intact, moved_seen, kept) =
-            compare(&material, (1e-6, 3e-3), 300, 0xc0_5157_e470_0003);
+            compare(&material, (1e-6, 3e-3), 300, (0xc0_5157_e470_0003, false));
         assert!(
             damaged > 500 && intact > 500 && kept > 300,
             "{damaged} damaged, {intact} intact points, {kept} damaged and kept"

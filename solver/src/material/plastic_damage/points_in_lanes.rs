@@ -1,15 +1,15 @@
 //! The update of the eight Gauss points of a fully integrated element with the points in
 //! SIMD lanes (issue 11): the never-yielded check of [`PlasticDamage::virgin_elastic`]
 //! (trial effective stress, invariant bound of eq. 25) for the eight points at once, and
-//! the shortcut of [`PlasticDamage::yielded_elastic`] under the consistent recovery rule
-//! for a yielded point inside its surface by the invariant bound (the bound, the nominal
-//! stress of `recovery_in_lanes` and the dissipation in lanes), and the general update
+//! the shortcut of [`PlasticDamage::yielded_elastic`] under either recovery rule for a
+//! yielded point inside its surface by the invariant bound (the bound, the nominal stress
+//! of `recovery_in_lanes` and the dissipation in lanes), and the general update
 //! ([`PlasticDamage::update`]) for the points that take neither. Each lane performs the
 //! scalar path's IEEE operations in the same order, so states and stresses are those of
 //! eight calls of [`PlasticDamage::update`] bit for bit (tested in
 //! `element::hex8_full_lanes`, and the nominal stress in `recovery_in_lanes`).
 
-use super::recovery_in_lanes::consistent_stress_lanes;
+use super::recovery_in_lanes::{consistent_stress_lanes, lee_fenves_stress_lanes};
 use super::{
     dissipated_after, slot, virgin_bound, virgin_bracket_in, virgin_bracket_lanes,
     write_virgin_lane, PlasticDamage, Recovery,
@@ -107,14 +107,14 @@ impl PlasticDamage {
     }
 
     /// [`PlasticDamage::yielded_elastic`] for the points of an element in lanes, under the
-    /// consistent recovery rule with D not read by the element: a point that has yielded
-    /// (y_t or y_c ≠ 0), has a finite strain, was not taken by the never-yielded check
-    /// (`virgin`) and is inside its surface by the invariant bound keeps its internal
-    /// variables; its nominal stress, D slot and dissipation are those of
-    /// [`PlasticDamage::commit`] for an unchanged state, bit for bit. Points the bound
+    /// Lee–Fenves rule, and under the consistent rule with D not read by the element: a
+    /// point that has yielded (y_t or y_c ≠ 0), has a finite strain, was not taken by the
+    /// never-yielded check (`virgin`) and is inside its surface by the invariant bound
+    /// keeps its internal variables; its nominal stress, D slot and dissipation are those
+    /// of [`PlasticDamage::commit`] for an unchanged state, bit for bit. Points the bound
     /// leaves open (tested at their exact principal values by the scalar path: measured no
-    /// faster in lanes, docs/benchmarks.md), points outside, under the other rule or with D
-    /// read take the scalar path, which decides as before. `eff`: σ̄ = E₀ : (ε − εᵖ) per lane
+    /// faster in lanes, docs/benchmarks.md), points outside, and, under the consistent
+    /// rule, points whose D is read take the scalar path, which decides as before. `eff`: σ̄ = E₀ : (ε − εᵖ) per lane
     /// ([`Self::virgin_lanes`]). Reads the states only.
     #[inline(always)]
     fn yielded_lanes<S: Simd>(
@@ -133,7 +133,8 @@ impl PlasticDamage {
             damage: F64s::ZERO,
             dissipated: F64s::ZERO,
         };
-        if self.constants.recovery != Recovery::Consistent || ctx.reads_damage {
+        let rule = self.constants.recovery;
+        if rule == Recovery::Consistent && ctx.reads_damage {
             return out;
         }
         let states = &states[..LANES * N];
@@ -170,13 +171,24 @@ impl PlasticDamage {
         if !any {
             return out;
         }
-        let sig = consistent_stress_lanes(
-            eff,
-            d_t,
-            d_c,
-            (self.constants.s0, self.elastic.poisson),
-            &out.pass,
-        );
+        let s0 = self.constants.s0;
+        // σ and the D slot of `nominal_with`: under the consistent rule with D not read,
+        // D is 0 for D_t = D_c = 0, else NaN; under the Lee–Fenves rule it is eq. (24)'s.
+        let (sig, damage) = match rule {
+            Recovery::Consistent => {
+                let sig =
+                    consistent_stress_lanes(eff, d_t, d_c, (s0, self.elastic.poisson), &out.pass);
+                let damage = F64s(std::array::from_fn(|g| {
+                    if d_t[g] == 0.0 && d_c[g] == 0.0 {
+                        0.0
+                    } else {
+                        f64::NAN
+                    }
+                }));
+                (sig, damage)
+            }
+            Recovery::LeeFenves => lee_fenves_stress_lanes(eff, d_t, d_c, s0, &out.pass),
+        };
         // The state's σₙ, εₙ, εᵖ and dissipation, lane by lane.
         let (mut sig0, mut eps0, mut plastic) = ([F64s::ZERO; 6], [F64s::ZERO; 6], [F64s::ZERO; 6]);
         let mut old_dissipated = F64s::ZERO;
@@ -198,20 +210,14 @@ impl PlasticDamage {
             (&sig0, &eps0, &plastic),
             (&sig, strain, &plastic),
         );
-        // D under the consistent rule where the element does not read it: 0 for D_t = D_c
-        // = 0, else NaN (`nominal_with`).
         for g in 0..LANES {
             out.dissipated[g] = if d_t[g] == 0.0 {
                 old_dissipated[g]
             } else {
                 moved[g]
             };
-            out.damage[g] = if d_t[g] == 0.0 && d_c[g] == 0.0 {
-                0.0
-            } else {
-                f64::NAN
-            };
         }
+        out.damage = damage;
         out.sigma = sig;
         out
     }

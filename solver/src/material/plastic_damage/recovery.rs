@@ -90,12 +90,6 @@ impl<'a> Classified<'a> {
         largest_value_bound(self.i1, self.q) <= 0.0
     }
 
-    /// Every principal value ≥ 0 by the bound Ī₁/3 − (2/3)√(3J̄₂) ≥ 0.
-    #[inline]
-    fn surely_tensile(&self) -> bool {
-        self.i1 / 3.0 - 2.0 * self.q / 3.0 >= 0.0
-    }
-
     /// [`principal_values`] of σ̄, formed at the first call.
     #[inline]
     fn values(&mut self) -> [f64; 3] {
@@ -104,23 +98,31 @@ impl<'a> Classified<'a> {
     }
 }
 
-/// Where the effective stress lies: pure compression (every principal value ≤ 0),
-/// pure tension (every one ≥ 0), or mixed, decided from the invariant bounds
-/// Ī₁/3 ∓ (2/3)√(3J̄₂) first, then from the signs of I₁, I₂, I₃ ([`definiteness`], which
-/// also settles the uniaxial and biaxial states the bounds leave open), and from the
-/// principal values only for a mixed state.
+/// The weight r(σ̄) of eq. (24) where the signs of the principal values settle it: 1 in
+/// pure tension (every principal value ≥ 0), 0 in pure compression (every one ≤ 0),
+/// decided from the invariant bounds Ī₁/3 ∓ (2/3)√(3J̄₂) of `eff` (its invariants `i1`,
+/// `q` of [`invariants`]) first, then from the signs of I₁, I₂, I₃ ([`definiteness`],
+/// which also settles the uniaxial and biaxial states the bounds leave open); `None` for a
+/// mixed state, whose r needs the principal values.
+#[inline(always)]
+pub fn weight_by_signs(i1: f64, q: f64, eff: &Voigt) -> Option<f64> {
+    if i1 / 3.0 - 2.0 * q / 3.0 >= 0.0 {
+        return Some(1.0);
+    }
+    if largest_value_bound(i1, q) <= 0.0 {
+        return Some(0.0);
+    }
+    match definiteness(eff) {
+        Definiteness::NonPositive => Some(0.0),
+        Definiteness::NonNegative => Some(1.0),
+        Definiteness::Indefinite => None,
+    }
+}
+
+/// r(σ̄) of eq. (24): [`weight_by_signs`], and from the principal values only for a mixed
+/// state.
 fn weight(c: &mut Classified) -> f64 {
-    if c.surely_tensile() {
-        return 1.0;
-    }
-    if c.surely_compressed() {
-        return 0.0;
-    }
-    match definiteness(c.eff) {
-        Definiteness::NonPositive => 0.0,
-        Definiteness::NonNegative => 1.0,
-        Definiteness::Indefinite => tension_weight(&c.values()),
-    }
+    weight_by_signs(c.i1, c.q, c.eff).unwrap_or_else(|| tension_weight(&c.values()))
 }
 
 /// D of eq. (24), D = 1 − (1 − D_c)(1 − s D_t), s = s₀ + (1 − s₀) r(σ̄).

@@ -1,18 +1,24 @@
-//! The consistent stiffness recovery ([`recovery::consistent_stress_of`], the module doc of
-//! `recovery.rs`) of eight effective stresses at once, one per lane (issue 11): the
-//! isotropic and pure-compression cases, the principal values, the choice of the tension
-//! set P and the linear map g_k(σ̄) as lane arithmetic; the one eigenprojector of a lone
-//! direction and the rare split of a close pair (every eigenvector) lane by lane with the
-//! scalar functions. Each lane performs the scalar rule's IEEE operations in the same order,
-//! so the stresses are those of [`recovery::consistent_stress_of`] bit for bit (tested
-//! below and through the element kernels).
+//! The stiffness recovery of eight effective stresses at once, one per lane (issue 11),
+//! under both rules of `recovery.rs`:
+//!
+//! * the consistent rule ([`recovery::consistent_stress_of`], the module doc of
+//!   `recovery.rs`): the isotropic and pure-compression cases, the principal values, the
+//!   choice of the tension set P and the linear map g_k(σ̄) as lane arithmetic; the one
+//!   eigenprojector of a lone direction and the rare split of a close pair (every
+//!   eigenvector) lane by lane with the scalar functions;
+//! * the Lee–Fenves rule of eq. (24) ([`recovery::lee_fenves_damage`]): the weight r(σ̄) from
+//!   the signs where they settle it, from the principal values in lanes for a mixed state,
+//!   and σ = (1 − D) σ̄ as lane arithmetic.
+//!
+//! Each lane performs the scalar rule's IEEE operations in the same order, so the stresses
+//! are those of the scalar rules bit for bit (tested below and through the element kernels).
 
 use super::principal::principal_values_lanes;
 use super::recovery::{
-    self, linear_map, lone_correction, map_coefficients, recovery_factors, set_map, SetMap,
-    SetTerms,
+    self, linear_map, lone_correction, map_coefficients, recovery_factors, set_map,
+    weight_by_signs, SetMap, SetTerms,
 };
-use super::yield_surface::{invariants, largest_value_bound};
+use super::yield_surface::{invariants, largest_value_bound, tension_weight};
 use crate::element::lanes::{F64s, VoigtLanes, LANES};
 use crate::material::Voigt;
 
@@ -105,6 +111,51 @@ pub fn consistent_stress_lanes(
     out
 }
 
+/// Nominal stresses σ = (1 − D) σ̄ (eq. 23) and D of eq. (24), D = 1 − (1 − D_c)(1 − s D_t)
+/// with s = s₀ + (1 − s₀) r(σ̄), for the effective stresses `eff` (lane l: point l) and
+/// the damage `d_t`, `d_c` per lane: lane l is
+/// `lee_fenves_damage(Classified::new(eff_l), d_t[l], d_c[l], s0)` and σ̄ scaled by 1 − D,
+/// bit for bit, for every lane in `wanted` (the others are unspecified, and cost no libm
+/// call). r(σ̄) only where D_t ≠ 0, from the principal values only for a mixed state.
+#[inline(always)]
+pub fn lee_fenves_stress_lanes(
+    eff: &VoigtLanes,
+    d_t: F64s,
+    d_c: F64s,
+    s0: f64,
+    wanted: &[bool; LANES],
+) -> (VoigtLanes, F64s) {
+    let (i1, q) = invariants(eff);
+    let mut weight = F64s::ZERO;
+    let mut mixed = [false; LANES];
+    let mut any_mixed = false;
+    for l in 0..LANES {
+        if !wanted[l] || d_t[l] == 0.0 {
+            continue;
+        }
+        match weight_by_signs(i1[l], q[l], &lane_of(eff, l)) {
+            Some(r) => weight[l] = r,
+            None => {
+                mixed[l] = true;
+                any_mixed = true;
+            }
+        }
+    }
+    if any_mixed {
+        let p = principal_values_lanes(eff, &mixed);
+        for l in (0..LANES).filter(|&l| mixed[l]) {
+            weight[l] = tension_weight(&[p[0][l], p[1][l], p[2][l]]);
+        }
+    }
+    let one = F64s::splat(1.0);
+    let s = F64s::splat(s0) + F64s::splat(1.0 - s0) * weight;
+    let cracked = one - (one - d_c) * (one - s * d_t);
+    let uncracked: [bool; LANES] = std::array::from_fn(|l| d_t[l] == 0.0);
+    let d = F64s::select(&uncracked, d_c, cracked);
+    let keep = one - d;
+    (std::array::from_fn(|i| keep * eff[i]), d)
+}
+
 /// [`recovery`]'s `select` lane-wise: the tension set P (its size m per lane) and the
 /// principal stresses of each lane, the first set whose stresses have the signs it assumes
 /// or, when rounding leaves none, the least violating one (the first of equals). The four
@@ -163,35 +214,49 @@ mod tests {
     use super::*;
     use crate::test_random::Lcg;
 
-    /// Random effective stresses of every sign pattern (with double and nearly double
-    /// principal values, exact zeros, pure compression), damage from none to full: each
-    /// lane is the scalar rule bit for bit, and every branch of the lane function is taken.
+    /// Effective stresses of every sign pattern, one per lane (isotropic compression, pure
+    /// compression, a double root, pure tension, a zero stress, general states), of
+    /// magnitude 10² to 10⁷, with s₀ from 0 to 1, D_t from none to full and D_c to 0.9.
+    fn random_lanes(rng: &mut Lcg, draw: usize) -> (VoigtLanes, f64, F64s, F64s) {
+        let mag = 10f64.powf(2.0 + 5.0 * rng.next());
+        let eff: VoigtLanes = std::array::from_fn(|i| {
+            F64s(std::array::from_fn(|l| match (draw + l) % 7 {
+                0 if i < 3 => -mag,
+                0 => 0.0,
+                1 if i < 3 => -mag * (1.0 + rng.next()),
+                1 => 0.1 * mag * rng.sym(),
+                2 if i < 2 => mag,
+                2 => 0.0,
+                3 if i < 3 => mag * (1.0 + rng.next()),
+                3 => 0.1 * mag * rng.sym(),
+                4 => 0.0,
+                _ => mag * rng.sym(),
+            }))
+        });
+        let s0 = [0.0, 0.2, 1.0, 0.7][draw % 4];
+        let d_t = F64s(std::array::from_fn(|l| {
+            [rng.next(), 0.0, 1.0, 1.0 - 1e-13][(draw + l) % 4]
+        }));
+        let d_c = F64s(std::array::from_fn(|_| 0.9 * rng.next()));
+        (eff, s0, d_t, d_c)
+    }
+
+    /// Lane `l` of `got` is `want` bit for bit.
+    fn assert_lane_is(got: &VoigtLanes, l: usize, want: &Voigt, what: &str) {
+        let got_l: Voigt = std::array::from_fn(|i| got[i][l]);
+        assert_eq!(got_l.map(f64::to_bits), want.map(f64::to_bits), "{what}");
+    }
+
+    /// The consistent rule in lanes against the scalar rule for [`random_lanes`]: each lane
+    /// bit for bit, and every branch of the lane function taken.
     #[test]
     fn lanes_are_the_scalar_consistent_stress_bit_for_bit() {
         let mut rng = Lcg(0x1a4e_5c0d_0001);
         let mut lone_or_split = 0;
         for draw in 0..4000 {
-            let mag = 10f64.powf(2.0 + 5.0 * rng.next());
-            let eff: VoigtLanes = std::array::from_fn(|i| {
-                F64s(std::array::from_fn(|l| match (draw + l) % 6 {
-                    // isotropic, pure compression, a double root, a zero stress
-                    0 if i < 3 => -mag,
-                    0 => 0.0,
-                    1 if i < 3 => -mag * (1.0 + rng.next()),
-                    1 => 0.1 * mag * rng.sym(),
-                    2 if i < 2 => mag,
-                    2 => 0.0,
-                    3 => 0.0,
-                    _ => mag * rng.sym(),
-                }))
-            });
-            let s0 = [0.0, 0.2, 1.0, 0.7][draw % 4];
+            let (eff, s0, d_t, d_c) = random_lanes(&mut rng, draw);
             let nu = 0.1 + 0.3 * rng.next();
-            let d_t = F64s(std::array::from_fn(|l| {
-                [rng.next(), 0.0, 1.0, 1.0 - 1e-13][(draw + l) % 4]
-            }));
-            let d_c = F64s(std::array::from_fn(|_| 0.9 * rng.next()));
-            let wanted = std::array::from_fn(|l| (draw + l) % 7 != 0);
+            let wanted = std::array::from_fn(|l| (draw + l) % 9 != 0);
             let got = consistent_stress_lanes(&eff, d_t, d_c, (s0, nu), &wanted);
             for l in 0..LANES {
                 if !wanted[l] {
@@ -205,18 +270,57 @@ mod tests {
                     s0,
                     nu,
                 );
-                let got_l: Voigt = std::array::from_fn(|i| got[i][l]);
-                assert_eq!(
-                    got_l.map(f64::to_bits),
-                    want.map(f64::to_bits),
+                let what = format!(
                     "draw {draw}, lane {l}: {eff_l:?} d_t {} d_c {} s0 {s0}",
-                    d_t[l],
-                    d_c[l]
+                    d_t[l], d_c[l]
                 );
+                assert_lane_is(&got, l, &want, &what);
                 let mixed = eff_l[..3].iter().any(|&v| v > 0.0) && d_t[l] > 0.0 && s0 < 1.0;
                 lone_or_split += usize::from(mixed);
             }
         }
         assert!(lone_or_split > 1000, "{lone_or_split} mixed lanes");
+    }
+
+    /// The Lee–Fenves rule in lanes against the scalar D of eq. (24) and σ = (1 − D) σ̄ for
+    /// [`random_lanes`]: bit for bit, with the mixed states (principal values), the states
+    /// the signs settle and the uncracked lanes (D = D_c) all taken many times.
+    #[test]
+    fn lanes_are_the_scalar_lee_fenves_stress_bit_for_bit() {
+        let mut rng = Lcg(0x1ee_fe5e_0002);
+        let mut taken = [0usize; 3];
+        for draw in 0..4000 {
+            let (eff, s0, d_t, d_c) = random_lanes(&mut rng, draw);
+            let wanted = std::array::from_fn(|l| (draw + l) % 9 != 0);
+            let (got, got_d) = lee_fenves_stress_lanes(&eff, d_t, d_c, s0, &wanted);
+            for l in 0..LANES {
+                if !wanted[l] {
+                    continue;
+                }
+                let eff_l: Voigt = std::array::from_fn(|i| eff[i][l]);
+                let mut classified = recovery::Classified::new(&eff_l);
+                let d = recovery::lee_fenves_damage(&mut classified, d_t[l], d_c[l], s0);
+                let want = eff_l.map(|v| (1.0 - d) * v);
+                assert_eq!(got_d[l].to_bits(), d.to_bits(), "draw {draw}, lane {l}: D");
+                let what = format!(
+                    "draw {draw}, lane {l}: {eff_l:?} d_t {} d_c {} s0 {s0}",
+                    d_t[l], d_c[l]
+                );
+                assert_lane_is(&got, l, &want, &what);
+                let (i1, q) = invariants(&eff_l);
+                let branch = if d_t[l] == 0.0 {
+                    0
+                } else if weight_by_signs(i1, q, &eff_l).is_some() {
+                    1
+                } else {
+                    2
+                };
+                taken[branch] += 1;
+            }
+        }
+        assert!(
+            taken.iter().all(|&n| n > 2000),
+            "uncracked, by signs, mixed: {taken:?}"
+        );
     }
 }

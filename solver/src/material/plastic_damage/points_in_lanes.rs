@@ -114,8 +114,8 @@ impl PlasticDamage {
     /// of [`PlasticDamage::commit`] for an unchanged state, bit for bit. Points the bound
     /// leaves open (tested at their exact principal values by the scalar path: measured no
     /// faster in lanes, docs/benchmarks.md), points outside, and, under the consistent
-    /// rule, points whose D is read take the scalar path, which decides as before. `eff`: σ̄ = E₀ : (ε − εᵖ) per lane
-    /// ([`Self::virgin_lanes`]). Reads the states only.
+    /// rule, points whose D is read take the scalar path, which decides as before. `eff`:
+    /// σ̄ = E₀ : (ε − εᵖ) per lane ([`Self::virgin_lanes`]). Reads the states only.
     #[inline(always)]
     fn yielded_lanes<S: Simd>(
         &self,

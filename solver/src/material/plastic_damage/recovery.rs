@@ -131,8 +131,16 @@ pub fn lee_fenves_damage(c: &mut Classified, dt: f64, dc: f64, s0: f64) -> f64 {
     if dt == 0.0 {
         return dc;
     }
-    let s = s0 + (1.0 - s0) * weight(c);
-    1.0 - (1.0 - dc) * (1.0 - s * dt)
+    cracked_damage(weight(c), dt, dc, s0)
+}
+
+/// D of eq. (24) of a cracked point (D_t ≠ 0) from its weight r = r(σ̄):
+/// 1 − (1 − D_c)(1 − s D_t), s = s₀ + (1 − s₀) r (one point, or one per lane).
+#[inline(always)]
+pub fn cracked_damage<T: Lane>(r: T, dt: T, dc: T, s0: f64) -> T {
+    let one = T::splat(1.0);
+    let s = T::splat(s0) + T::splat(1.0 - s0) * r;
+    one - (one - dc) * (one - s * dt)
 }
 
 /// Principal consistent stresses for sorted principal effective stresses `p` (σ̂₁ ≥ σ̂₂ ≥

@@ -15,7 +15,7 @@
 
 use super::principal::principal_values_lanes;
 use super::recovery::{
-    self, linear_map, lone_correction, map_coefficients, recovery_factors, set_map,
+    self, cracked_damage, linear_map, lone_correction, map_coefficients, recovery_factors, set_map,
     weight_by_signs, SetMap, SetTerms,
 };
 use super::yield_surface::{invariants, largest_value_bound, tension_weight};
@@ -147,12 +147,9 @@ pub fn lee_fenves_stress_lanes(
             weight[l] = tension_weight(&[p[0][l], p[1][l], p[2][l]]);
         }
     }
-    let one = F64s::splat(1.0);
-    let s = F64s::splat(s0) + F64s::splat(1.0 - s0) * weight;
-    let cracked = one - (one - d_c) * (one - s * d_t);
     let uncracked: [bool; LANES] = std::array::from_fn(|l| d_t[l] == 0.0);
-    let d = F64s::select(&uncracked, d_c, cracked);
-    let keep = one - d;
+    let d = F64s::select(&uncracked, d_c, cracked_damage(weight, d_t, d_c, s0));
+    let keep = F64s::splat(1.0) - d;
     (std::array::from_fn(|i| keep * eff[i]), d)
 }
 

@@ -26,6 +26,14 @@ const DAMAGE_CHUNK: usize = 1024;
 /// Elements per parallel task of the two-phase force pass (one runtime dispatch each).
 const FORCE_CHUNK: usize = 16;
 
+/// Most [`FORCE_CHUNK`]s one unstolen rayon task of the two-phase pass runs in a row.
+/// Rayon's adaptive splitter stops splitting a task nobody steals after log₂(threads)
+/// halvings, so without a cap the last task of a step can hold a quarter of the group on
+/// 2 threads while the other thread has nothing left to steal: cracking elements cost
+/// several times an elastic one, and the damage is not spread evenly over the range.
+/// 128 elements a task keeps that tail to a fraction of a per cent of the pass.
+const FORCE_TASK_CHUNKS: usize = 8;
+
 /// Precomputed geometry of a group's elements.
 #[derive(Clone, Debug)]
 pub enum GroupGeometry {
@@ -426,6 +434,7 @@ impl ElementGroup {
                 .internal
                 .par_chunks_mut(FORCE_CHUNK)
                 .enumerate()
+                .with_max_len(FORCE_TASK_CHUNKS)
                 .for_each(|(c, chunk)| {
                     let first = c * FORCE_CHUNK;
                     let work = ChunkForces {

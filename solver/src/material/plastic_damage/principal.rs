@@ -56,11 +56,17 @@ pub fn principal_values_lanes(s: &VoigtLanes, wanted: &[bool; LANES]) -> [F64s; 
     values.map(|v| F64s::select(&isotropic, q, v))
 }
 
-/// cos φ and cos(φ + 2π/3) for φ = acos(r)/3, r = det B/2 clamped to [−1, 1].
+/// cos φ and cos(φ + 2π/3) for φ = acos(r)/3, r = det B/2 clamped to [−1, 1], from one
+/// `sin_cos` (one libm `sincos`, its range reduction shared) by the addition theorem
+/// cos(φ + 2π/3) = −½ cos φ − (√3/2) sin φ. For φ ∈ [0, π/3] both terms are ≤ 0, so the
+/// sum does not cancel: it is within a few ulps of a second `cos`.
 #[inline(always)]
 fn angle_cosines(ratio: f64) -> (f64, f64) {
+    /// √3/2 = sin(2π/3).
+    const SIN_TWO_THIRDS_PI: f64 = 0.866_025_403_784_438_6;
     let phi = ratio.clamp(-1.0, 1.0).acos() / 3.0;
-    (phi.cos(), (phi + 2.0 * std::f64::consts::FRAC_PI_3).cos())
+    let (sin, cos) = phi.sin_cos();
+    (cos, -0.5 * cos - SIN_TWO_THIRDS_PI * sin)
 }
 
 /// The closed form's arithmetic for one tensor or one per lane: q = tr/3 and the sorted

@@ -14,21 +14,16 @@ fn to_matrix(s: &Voigt) -> Matrix3<f64> {
 /// Principal values σ̂₁ ≥ σ̂₂ ≥ σ̂₃ of a stress-like Voigt vector, in closed form
 /// (trigonometric solution of the characteristic cubic, Smith 1961, Commun. ACM 4(4) 168):
 /// with q = tr/3, p = √(|A − qI|²/6), B = (A − qI)/p and φ = acos(det B/2)/3, the values are
-/// q + 2p cos φ, q + 2p cos(φ + 2π/3) and the rest of the trace. About 10× faster than the
-/// iterative solver; used where only the values are needed (yield check, weight r). Near a
-/// double root acos loses digits: the error is then up to ~1e-11 of the largest component,
-/// far below the 1e-10 f_c0 tolerance of the return mapping.
+/// q + 2p cos φ, q + 2p cos(φ + 2π/3) and the rest of the trace. The two cosines come from
+/// a polynomial without libm calls ([`angle_cosines`]). About 10× faster than the iterative
+/// solver; used where only the values are needed (yield check, weight r). Near a double
+/// root the values lose digits (r = det B/2 is then rounded near ±1, where φ(r) has an
+/// infinite slope): the error is then up to ~1e-11 of the largest component, far below
+/// the 1e-10 f_c0 tolerance of the return mapping.
 #[inline]
 pub fn principal_values(s: &Voigt) -> [f64; 3] {
-    let mut isotropic = false;
-    let (q, values) = closed_form(s, |ratio, p2| {
-        if p2 == 0.0 {
-            isotropic = true;
-            return (0.0, 0.0);
-        }
-        angle_cosines(ratio)
-    });
-    if isotropic {
+    let (q, p2, values) = closed_form(s);
+    if p2 == 0.0 {
         [q; 3]
     } else {
         values
@@ -36,45 +31,82 @@ pub fn principal_values(s: &Voigt) -> [f64; 3] {
 }
 
 /// [`principal_values`] of eight stress-like Voigt vectors, one per lane, bit for bit: the
-/// same IEEE operations in the same order ([`closed_form`]), with `clamp`, `acos` and `cos`
-/// (libm) called lane by lane. Lanes not in `wanted` are not evaluated past the arithmetic
-/// (their values are unspecified), so that points that need no principal values cost no
-/// libm calls.
+/// same IEEE operations in the same order ([`closed_form`]), in lane arithmetic (no libm
+/// call, so every lane is evaluated: a lane that needs no values costs a few vector
+/// operations).
 #[inline(always)]
-pub fn principal_values_lanes(s: &VoigtLanes, wanted: &[bool; LANES]) -> [F64s; 3] {
-    let mut isotropic = [false; LANES];
-    let (q, values) = closed_form(s, |ratio, p2| {
-        let (mut cos1, mut cos3) = (F64s::ZERO, F64s::ZERO);
-        for l in 0..LANES {
-            isotropic[l] = p2[l] == 0.0;
-            if wanted[l] && !isotropic[l] {
-                (cos1[l], cos3[l]) = angle_cosines(ratio[l]);
-            }
-        }
-        (cos1, cos3)
-    });
+pub fn principal_values_lanes(s: &VoigtLanes) -> [F64s; 3] {
+    let (q, p2, values) = closed_form(s);
+    let isotropic: [bool; LANES] = std::array::from_fn(|l| p2[l] == 0.0);
     values.map(|v| F64s::select(&isotropic, q, v))
 }
 
-/// cos φ and cos(φ + 2π/3) for φ = acos(r)/3, r = det B/2 clamped to [−1, 1], from one
-/// `sin_cos` (one libm `sincos`, its range reduction shared) by the addition theorem
-/// cos(φ + 2π/3) = −½ cos φ − (√3/2) sin φ. For φ ∈ [0, π/3] both terms are ≤ 0, so the
-/// sum does not cancel: it is within a few ulps of a second `cos`.
+/// Coefficients a₀ … a₁₉ of P(s) = 2 cos(⅔ acos s) on s ∈ [0, 1] in powers of u = 2s − 1:
+/// the degree-19 Chebyshev interpolant of P at 20 Chebyshev points, formed in 40-digit
+/// arithmetic (mpmath 1.4) and rounded to f64. P is analytic on [0, 1] (its nearest
+/// singularity is s = −1), so its Chebyshev coefficients fall by ≈ 6× per degree and the
+/// truncation error is ≈ 4e-17; evaluated by [`two_cos_third`] in f64 the error is at most
+/// 4.7 half-ulps of P (20,001 points of [0, 1] against the 40-digit P).
+const TWO_COS_THIRD: [f64; 20] = [
+    1.532088886237956,
+    0.4948181326457061,
+    -0.031018376872972823,
+    0.00493270563017358,
+    -0.0010082493822507533,
+    0.00023285090588889628,
+    -5.783987287367384e-05,
+    1.5082157125947237e-05,
+    -4.071737975570475e-06,
+    1.1283026026324727e-06,
+    -3.190906481892157e-07,
+    9.171913393720147e-08,
+    -2.6690561548999752e-08,
+    7.861582684791152e-09,
+    -2.3758598700102196e-09,
+    7.125864137824722e-10,
+    -1.8265569427152695e-10,
+    5.529152712005641e-11,
+    -3.2157946341090994e-11,
+    9.908277512981742e-12,
+];
+
+/// P(s) = 2 cos(⅔ acos s) for s ∈ [0, 1] from [`TWO_COS_THIRD`], by Estrin's scheme (the
+/// pairs, then powers u², u⁴, u⁸, u¹⁶: a dependency chain of 6 multiply-adds instead of
+/// Horner's 19).
 #[inline(always)]
-fn angle_cosines(ratio: f64) -> (f64, f64) {
-    /// √3/2 = sin(2π/3).
-    const SIN_TWO_THIRDS_PI: f64 = 0.866_025_403_784_438_6;
-    let phi = ratio.clamp(-1.0, 1.0).acos() / 3.0;
-    let (sin, cos) = phi.sin_cos();
-    (cos, -0.5 * cos - SIN_TWO_THIRDS_PI * sin)
+fn two_cos_third<T: Lane>(s: T) -> T {
+    let a = |k: usize| T::splat(TWO_COS_THIRD[k]);
+    let u = T::splat(2.0) * s - T::splat(1.0);
+    let u2 = u * u;
+    let u4 = u2 * u2;
+    let u8 = u4 * u4;
+    let pairs: [T; 10] = std::array::from_fn(|i| a(2 * i) + a(2 * i + 1) * u);
+    let quads: [T; 5] = std::array::from_fn(|i| pairs[2 * i] + pairs[2 * i + 1] * u2);
+    let low = quads[0] + quads[1] * u4;
+    let high = quads[2] + quads[3] * u4;
+    (low + high * u8) + quads[4] * (u8 * u8)
 }
 
-/// The closed form's arithmetic for one tensor or one per lane: q = tr/3 and the sorted
-/// values q + 2p cos φ, q + 2p cos(φ + 2π/3) and the rest of the trace, where `cosines`
-/// gives the two cosines from r = det(A − qI)/(2p³) and p² (the values are meaningless
-/// where p² = 0: the tensor is then qI).
+/// 2 cos φ and 2 cos(φ + 2π/3) for φ = acos(r)/3, r clamped to [−1, 1] (a NaN r, where p³
+/// underflows, is taken as −1), without trigonometry: with 1 + r = 2 cos²(3φ/2), 2 cos φ =
+/// P(√((1 + r)/2)), and since φ(−r) = π/3 − φ(r), 2 cos(φ + 2π/3) = −2 cos(π/3 − φ) =
+/// −P(√((1 − r)/2)) ([`two_cos_third`]). The square roots take the infinite slope of φ(r)
+/// at r = ±1 (the double roots), where a polynomial in r could not follow it.
 #[inline(always)]
-fn closed_form<T: Lane>(s: &[T; 6], cosines: impl FnOnce(T, T) -> (T, T)) -> (T, [T; 3]) {
+fn angle_cosines<T: Lane>(ratio: T) -> (T, T) {
+    let r = ratio.max(T::splat(-1.0)).min(T::splat(1.0));
+    let half = T::splat(0.5);
+    let s_first = (half + half * r).sqrt();
+    let s_third = (half - half * r).sqrt();
+    (two_cos_third(s_first), -two_cos_third(s_third))
+}
+
+/// The closed form's arithmetic for one tensor or one per lane: q = tr/3, p² and the sorted
+/// values q + p·2cos φ, q + p·2cos(φ + 2π/3) and the rest of the trace, the cosines from
+/// r = det(A − qI)/(2p³) ([`angle_cosines`]; the values are meaningless where p² = 0: the
+/// tensor is then qI).
+#[inline(always)]
+fn closed_form<T: Lane>(s: &[T; 6]) -> (T, T, [T; 3]) {
     let (d, e, f) = (s[3], s[4], s[5]);
     let q = (s[0] + s[1] + s[2]) / T::splat(3.0);
     let (a0, b0, c0) = (s[0] - q, s[1] - q, s[2] - q);
@@ -82,15 +114,15 @@ fn closed_form<T: Lane>(s: &[T; 6], cosines: impl FnOnce(T, T) -> (T, T)) -> (T,
     let p = (p2 / T::splat(6.0)).sqrt();
     let det = a0 * (b0 * c0 - e * e) - d * (d * c0 - e * f) + f * (d * e - b0 * f);
     let two_p = T::splat(2.0) * p;
-    let (cos1, cos3) = cosines(det / (two_p * p * p), p2);
-    let l1 = q + two_p * cos1;
-    let l3 = q + two_p * cos3;
+    let (two_cos1, two_cos3) = angle_cosines(det / (two_p * p * p));
+    let l1 = q + p * two_cos1;
+    let l3 = q + p * two_cos3;
     let three_q = T::splat(3.0) * q;
     let l2 = three_q - l1 - l3;
     // Guard the order against rounding.
     let hi = l1.max(l2).max(l3);
     let lo = l1.min(l2).min(l3);
-    (q, [hi, three_q - hi - lo, lo])
+    (q, p2, [hi, three_q - hi - lo, lo])
 }
 
 /// Signs of the principal values, known without computing them ([`definiteness`]).
@@ -408,7 +440,7 @@ mod tests {
     }
 
     /// The lane form of the closed-form values is the scalar one bit for bit in every
-    /// wanted lane: random tensors, isotropic ones (p² = 0), double roots and zeros.
+    /// lane: random tensors, isotropic ones (p² = 0), double roots and zeros.
     #[test]
     fn principal_values_in_lanes_are_the_scalar_values_bit_for_bit() {
         let mut rng = crate::test_random::Lcg(0x9a1e_5c0d_0002);
@@ -422,9 +454,8 @@ mod tests {
                     _ => mag * rng.sym(),
                 }))
             });
-            let wanted: [bool; LANES] = std::array::from_fn(|l| (draw + l) % 3 != 0);
-            let got = principal_values_lanes(&s, &wanted);
-            for l in (0..LANES).filter(|&l| wanted[l]) {
+            let got = principal_values_lanes(&s);
+            for l in 0..LANES {
                 let want = principal_values(&std::array::from_fn(|i| s[i][l]));
                 let got_l = [got[0][l], got[1][l], got[2][l]];
                 assert_eq!(
@@ -433,6 +464,34 @@ mod tests {
                     "draw {draw}, lane {l}"
                 );
             }
+        }
+    }
+
+    /// The polynomial of the cosines against libm's 2 cos(⅔ acos s) (each call within an ulp
+    /// or so, so the two agree to a few ulps where the polynomial is right), on a fine grid
+    /// of [0, 1] with its ends, and the closed form's cosines at r = −1, 0, 1 (φ = π/3, π/6,
+    /// 0) against their exact values.
+    #[test]
+    fn the_cosine_polynomial_is_libm_to_a_few_ulps() {
+        for i in 0..=100_000 {
+            let s = f64::from(i) / 100_000.0;
+            let want = 2.0 * ((2.0 / 3.0) * s.acos()).cos();
+            let got = two_cos_third(s);
+            assert!(
+                (got - want).abs() <= 2e-15 * want,
+                "s = {s}: {got} against libm {want}"
+            );
+        }
+        let sqrt3 = 3f64.sqrt();
+        for (r, first, third) in [(-1.0, 1.0, -2.0), (0.0, sqrt3, -sqrt3), (1.0, 2.0, -1.0)] {
+            let (c1, c3) = angle_cosines(r);
+            assert!((c1 - first).abs() <= 4e-16 * first, "r = {r}: {c1}");
+            assert!((c3 - third).abs() <= 4e-16 * third.abs(), "r = {r}: {c3}");
+        }
+        // Out of range and NaN ratios (rounding; p³ underflowing) stay finite.
+        for r in [-1.5, 1.5, f64::NAN] {
+            let (c1, c3) = angle_cosines(r);
+            assert!(c1.is_finite() && c3.is_finite(), "r = {r}");
         }
     }
 

@@ -57,7 +57,7 @@ pub fn consistent_stress_lanes(
     if !any {
         return iso_stress;
     }
-    let p = principal_values_lanes(eff, &spectral);
+    let p = principal_values_lanes(eff);
     let (m_set, sig) = select_lanes(&p, d_c, a, phi, nu);
     let (a1, offset, k0) = map_coefficients(&p, &sig, d_c, a, nu);
     let k_tension = k0 + phi;
@@ -142,7 +142,7 @@ pub fn lee_fenves_stress_lanes(
         }
     }
     if any_mixed {
-        let p = principal_values_lanes(eff, &mixed);
+        let p = principal_values_lanes(eff);
         for l in (0..LANES).filter(|&l| mixed[l]) {
             weight[l] = tension_weight(&[p[0][l], p[1][l], p[2][l]]);
         }

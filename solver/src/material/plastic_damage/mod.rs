@@ -238,7 +238,8 @@ struct Known {
 
 /// Principal values of a trial effective stress σ̄ = E₀ : (ε − εᵖ) already formed, with the
 /// strain and plastic strain it was formed from, so that the return mapping can take them
-/// instead of forming them again ([`principal_values`]: an `acos` and three `cos`).
+/// instead of forming them again ([`principal_values`]: two polynomials of degree 19 and
+/// three square roots).
 #[derive(Clone, Copy)]
 struct KnownTrial {
     strain: Voigt,

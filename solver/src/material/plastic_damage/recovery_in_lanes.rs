@@ -26,7 +26,8 @@ use crate::material::Voigt;
 /// l), tensile and compressive damage `d_t`, `d_c` (D_t, D_c of eq. 24 per lane), recovery
 /// floor `s0` and Poisson's ratio `nu`: lane l is
 /// `consistent_stress_of(Classified::new(eff_l), d_t[l], d_c[l], s0, nu)` bit for bit for
-/// every lane in `wanted` (the others are unspecified, and cost no libm call).
+/// every lane in `wanted` (the others are unspecified, and skip the spectral branch's
+/// lane-by-lane work).
 #[inline(always)]
 pub fn consistent_stress_lanes(
     eff: &VoigtLanes,
@@ -115,8 +116,9 @@ pub fn consistent_stress_lanes(
 /// with s = s₀ + (1 − s₀) r(σ̄), for the effective stresses `eff` (lane l: point l) and
 /// the damage `d_t`, `d_c` per lane: lane l is
 /// `lee_fenves_damage(Classified::new(eff_l), d_t[l], d_c[l], s0)` and σ̄ scaled by 1 − D,
-/// bit for bit, for every lane in `wanted` (the others are unspecified, and cost no libm
-/// call). r(σ̄) only where D_t ≠ 0, from the principal values only for a mixed state.
+/// bit for bit, for every lane in `wanted` (the others are unspecified, and skip the
+/// lane-by-lane weight). r(σ̄) only where D_t ≠ 0, from the principal values only for a
+/// mixed state.
 #[inline(always)]
 pub fn lee_fenves_stress_lanes(
     eff: &VoigtLanes,

@@ -447,7 +447,7 @@ impl ElementGroup {
                     if lanes {
                         lanes::run_lane_work(work)
                     } else {
-                        work.run(pulp::Scalar::new())
+                        lanes::run_scalar_work(work)
                     }
                 });
         }
@@ -542,7 +542,7 @@ impl ElementGroup {
             if lanes {
                 lanes::run_lane_work(work)
             } else {
-                work.run(pulp::Scalar::new())
+                lanes::run_scalar_work(work)
             }
         });
     }

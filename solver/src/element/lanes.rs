@@ -157,9 +157,37 @@ impl<W: LaneWork> pulp::WithSimd for Dispatched<W> {
 /// Run `work` compiled for the best instruction set of the CPU: AVX-512 (x86-64-v4), AVX2
 /// and FMA (x86-64-v3) or the baseline, chosen at run time by pulp. The lane operators
 /// give the same bits under each (no contraction into FMA).
+///
+/// The baseline is [`run_scalar_work`], out of line, rather than pulp's fallback inlined
+/// here: a caller that also runs the work without lanes then shares one scalar body with
+/// it instead of holding two inlined copies of the whole kernel.
 #[inline(always)]
 pub fn run_lane_work<W: LaneWork>(work: W) -> W::Output {
-    pulp::Arch::new().dispatch(Dispatched(work))
+    #[cfg(target_arch = "x86_64")]
+    {
+        match pulp::Arch::new() {
+            pulp::Arch::V4(simd) => Simd::vectorize(simd, Dispatched(work)),
+            pulp::Arch::V3(simd) => Simd::vectorize(simd, Dispatched(work)),
+            // the baseline (`Arch` is non-exhaustive)
+            _ => run_scalar_work(work),
+        }
+    }
+    #[cfg(not(target_arch = "x86_64"))]
+    {
+        pulp::Arch::new().dispatch(Dispatched(work))
+    }
+}
+
+/// Run `work` in plain scalar code (pulp's `Scalar`): the lanes-off path of the element
+/// passes and [`run_lane_work`]'s baseline. Kept out of line on purpose. The kernels
+/// inlined into a work make each instance a large function. With two inlined scalar
+/// copies in each caller (the lanes-off branch and pulp's fallback), the two element
+/// passes' closures took 298 s of LLVM's optimisation. With their vector entry points,
+/// that was 572 s of the crate's 603 s, all in one codegen unit. Out of line, the
+/// crate's release build fell from 12.8 to 3.9 min (docs/benchmarks.md, stop 68).
+#[inline(never)]
+pub fn run_scalar_work<W: LaneWork>(work: W) -> W::Output {
+    work.run(pulp::Scalar::new())
 }
 
 /// How many vectors of `S` an [`F64s`] is: 1 with AVX-512, 2 with AVX2, 8 without

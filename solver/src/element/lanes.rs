@@ -184,7 +184,7 @@ pub fn run_lane_work<W: LaneWork>(work: W) -> W::Output {
 /// copies in each caller (the lanes-off branch and pulp's fallback), the two element
 /// passes' closures took 298 s of LLVM's optimisation. With their vector entry points,
 /// that was 572 s of the crate's 603 s, all in one codegen unit. Out of line, the
-/// crate's release build fell from 12.8 to 3.9 min (docs/benchmarks.md, stop 68).
+/// crate's release build fell from 12.0 to 3.9 min (docs/benchmarks.md, stop 68).
 #[inline(never)]
 pub fn run_scalar_work<W: LaneWork>(work: W) -> W::Output {
     work.run(pulp::Scalar::new())

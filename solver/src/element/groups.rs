@@ -444,11 +444,7 @@ impl ElementGroup {
                         out: chunk,
                         damping,
                     };
-                    if lanes {
-                        lanes::run_lane_work(work)
-                    } else {
-                        lanes::run_scalar_work(work)
-                    }
+                    lanes::run_work(work, lanes)
                 });
         }
         self.element_forces = Some(buffers);
@@ -539,11 +535,7 @@ impl ElementGroup {
                 run: run.clone(),
                 add: &add,
             };
-            if lanes {
-                lanes::run_lane_work(work)
-            } else {
-                lanes::run_scalar_work(work)
-            }
+            lanes::run_work(work, lanes)
         });
     }
 

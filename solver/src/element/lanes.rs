@@ -190,6 +190,18 @@ pub fn run_scalar_work<W: LaneWork>(work: W) -> W::Output {
     work.run(pulp::Scalar::new())
 }
 
+/// Run `work` in lanes ([`run_lane_work`]) when `in_lanes`, else in plain scalar code
+/// ([`run_scalar_work`]): the element passes' switch between their two paths, both
+/// bodies shared with every other caller of the same work type.
+#[inline(always)]
+pub fn run_work<W: LaneWork>(work: W, in_lanes: bool) -> W::Output {
+    if in_lanes {
+        run_lane_work(work)
+    } else {
+        run_scalar_work(work)
+    }
+}
+
 /// How many vectors of `S` an [`F64s`] is: 1 with AVX-512, 2 with AVX2, 8 without
 /// vectors (pulp's scalar fallback).
 #[inline(always)]

@@ -32,9 +32,29 @@ pub(crate) fn label(path: &std::path::Path) -> String {
     path.display().to_string()
 }
 
-/// A unique, empty scratch directory for tests (no extra dependency).
+/// A unique, empty scratch directory for tests (no extra dependency), removed with
+/// everything in it when the test that made it ends, passed or failed.
 #[cfg(test)]
-pub(crate) fn test_dir(name: &str) -> std::path::PathBuf {
+pub(crate) struct TestDir(std::path::PathBuf);
+
+#[cfg(test)]
+impl std::ops::Deref for TestDir {
+    type Target = std::path::Path;
+    fn deref(&self) -> &std::path::Path {
+        &self.0
+    }
+}
+
+#[cfg(test)]
+impl Drop for TestDir {
+    fn drop(&mut self) {
+        let _ = std::fs::remove_dir_all(&self.0);
+    }
+}
+
+/// A new [`TestDir`] named after `name`, the process and a counter.
+#[cfg(test)]
+pub(crate) fn test_dir(name: &str) -> TestDir {
     use std::sync::atomic::{AtomicUsize, Ordering};
     static N: AtomicUsize = AtomicUsize::new(0);
     let dir = std::env::temp_dir().join(format!(
@@ -44,5 +64,5 @@ pub(crate) fn test_dir(name: &str) -> std::path::PathBuf {
     ));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
-    dir
+    TestDir(dir)
 }

@@ -12,9 +12,14 @@
 //!
 //! 54 more multiply-adds per point than with stored ∂N/∂x, for 60 % less memory traffic
 //! (the kernel is memory-bound when the geometry streams from memory).
+//!
+//! The sums are fused multiply-adds (`mul_add`, [`fused_sum3_scalar`]) in the order of the
+//! lane kernel (`hex8_full_lanes`), which gives these results bit for bit. They are
+//! correctly rounded on every target; compiled without FMA (pulp's scalar fallback, the
+//! lanes-off reference path) each is a call to the C library's `fma`.
 
 use crate::element::hex8_shape::{gauss_points, inverse_3x3, jacobian, shape_derivatives, NODE_XI};
-use crate::element::lanes::F64s;
+use crate::element::lanes::{fused_sum3_scalar, run_lane_work, F64s, LaneWork, Simd};
 use crate::material::{Material, PointContext, Voigt};
 
 /// 1/√3, the 2×2×2 Gauss abscissa (equal to the one of `hex8_shape::gauss_points`, tested).
@@ -92,21 +97,29 @@ impl FullGeometry {
         std::array::from_fn(|k| std::array::from_fn(|j| self.jinv[k][j][g]))
     }
 
-    /// Displacement gradient G_ij = ∂u_i/∂x_j at Gauss point `g`.
+    /// Displacement gradient G_ij = ∂u_i/∂x_j at Gauss point `g`. Run under the lanes'
+    /// dispatch ([`run_lane_work`]): its fused multiply-adds are then the CPU's FMA
+    /// instructions, not calls of the C library's `fma`, wherever it is called from.
     #[inline(always)]
     pub fn gradient(&self, g: usize, u: &[[f64; 3]; 8]) -> [[f64; 3]; 3] {
+        run_lane_work(Gradient { geo: self, g, u })
+    }
+
+    /// [`Self::gradient`] in the instruction set it is compiled for.
+    #[inline(always)]
+    fn gradient_fused(&self, g: usize, u: &[[f64; 3]; 8]) -> [[f64; 3]; 3] {
         let d = &NATURAL_DERIVATIVES[g];
         let ji = &self.point_jinv(g);
         let mut h = [[0.0; 3]; 3];
         for a in 0..8 {
             for i in 0..3 {
                 for k in 0..3 {
-                    h[i][k] += u[a][i] * d[a][k];
+                    h[i][k] = u[a][i].mul_add(d[a][k], h[i][k]);
                 }
             }
         }
         std::array::from_fn(|i| {
-            std::array::from_fn(|j| h[i][0] * ji[0][j] + h[i][1] * ji[1][j] + h[i][2] * ji[2][j])
+            std::array::from_fn(|j| fused_sum3_scalar(h[i], [ji[0][j], ji[1][j], ji[2][j]]))
         })
     }
 
@@ -124,9 +137,16 @@ impl FullGeometry {
         ]
     }
 
-    /// f_a += w det J · B_aᵀ σ at Gauss point `g`.
+    /// f_a += w det J · B_aᵀ σ at Gauss point `g`, under the lanes' dispatch like
+    /// [`Self::gradient`].
     #[inline(always)]
     pub fn add_forces(&self, g: usize, s: &Voigt, f: &mut [[f64; 3]; 8]) {
+        run_lane_work(AddForces { geo: self, g, s, f })
+    }
+
+    /// [`Self::add_forces`] in the instruction set it is compiled for.
+    #[inline(always)]
+    fn add_forces_fused(&self, g: usize, s: &Voigt, f: &mut [[f64; 3]; 8]) {
         let d = &NATURAL_DERIVATIVES[g];
         let ji = &self.point_jinv(g);
         let w = self.wdet[g];
@@ -134,14 +154,49 @@ impl FullGeometry {
         let mut p = [[0.0; 3]; 3];
         for i in 0..3 {
             for k in 0..3 {
-                p[i][k] = w * (sig[i][0] * ji[k][0] + sig[i][1] * ji[k][1] + sig[i][2] * ji[k][2]);
+                p[i][k] = w * fused_sum3_scalar(sig[i], ji[k]);
             }
         }
         for a in 0..8 {
             for i in 0..3 {
-                f[a][i] += d[a][0] * p[i][0] + d[a][1] * p[i][1] + d[a][2] * p[i][2];
+                let da = d[a];
+                f[a][i] = da[2].mul_add(
+                    p[i][2],
+                    da[1].mul_add(p[i][1], da[0].mul_add(p[i][0], f[a][i])),
+                );
             }
         }
+    }
+}
+
+/// [`FullGeometry::gradient`] as the work of its dispatch.
+struct Gradient<'a> {
+    geo: &'a FullGeometry,
+    g: usize,
+    u: &'a [[f64; 3]; 8],
+}
+
+impl LaneWork for Gradient<'_> {
+    type Output = [[f64; 3]; 3];
+    #[inline(always)]
+    fn run<S: Simd>(self, _simd: S) -> [[f64; 3]; 3] {
+        self.geo.gradient_fused(self.g, self.u)
+    }
+}
+
+/// [`FullGeometry::add_forces`] as the work of its dispatch.
+struct AddForces<'a> {
+    geo: &'a FullGeometry,
+    g: usize,
+    s: &'a Voigt,
+    f: &'a mut [[f64; 3]; 8],
+}
+
+impl LaneWork for AddForces<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn run<S: Simd>(self, _simd: S) {
+        self.geo.add_forces_fused(self.g, self.s, self.f)
     }
 }
 

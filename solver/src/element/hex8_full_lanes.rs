@@ -3,6 +3,7 @@
 //! ([`FullGeometry`], stored point-minor) is loaded as it lies and nothing is gathered or
 //! transposed. Each lane performs the IEEE operations of the scalar kernel
 //! ([`crate::element::hex8_full::internal_force_with_initial_strain`]) in the same order,
+//! its fused multiply-adds included,
 //! so the forces and the material states are the scalar ones bit for bit (tested on random
 //! elements and materials, and through whole runs in `solver/tests/element_lanes.rs`).
 //!
@@ -21,7 +22,8 @@
 
 use crate::element::hex8_full::{FullGeometry, NATURAL_DERIVATIVES};
 use crate::element::lanes::{
-    elastic_stress_lanes, part, parts, set_part, sum3, F64s, LaneWork, Simd, VoigtLanes, LANES,
+    elastic_stress_lanes, fused_sum3, part, parts, set_part, F64s, LaneWork, Simd, VoigtLanes,
+    LANES,
 };
 #[cfg(doc)]
 use crate::material::PlasticDamage;
@@ -72,7 +74,8 @@ pub fn point_strains<S: Simd>(simd: S, geo: &FullGeometry, u: &[[f64; 3]; 8]) ->
     let ji = &geo.jinv;
     let mut e = [F64s::ZERO; 6];
     for p in 0..parts::<S>() {
-        // H_ik = Σ_a u_ai d_ak, accumulated from zero in node order.
+        // H_ik = Σ_a u_ai d_ak, accumulated from zero in node order by fused
+        // multiply-adds.
         let mut h = [[simd.splat_f64s(0.0); 3]; 3];
         for (a, ua) in u.iter().enumerate() {
             let d = &POINT_DERIVATIVES[a];
@@ -84,7 +87,7 @@ pub fn point_strains<S: Simd>(simd: S, geo: &FullGeometry, u: &[[f64; 3]; 8]) ->
             for i in 0..3 {
                 let uai = simd.splat_f64s(ua[i]);
                 for k in 0..3 {
-                    h[i][k] = simd.add_f64s(h[i][k], simd.mul_f64s(uai, dk[k]));
+                    h[i][k] = simd.mul_add_f64s(uai, dk[k], h[i][k]);
                 }
             }
         }
@@ -99,7 +102,7 @@ pub fn point_strains<S: Simd>(simd: S, geo: &FullGeometry, u: &[[f64; 3]; 8]) ->
         let mut gr = [[simd.splat_f64s(0.0); 3]; 3];
         for (gr_i, h_i) in gr.iter_mut().zip(&h) {
             for (gr_ic, jt_c) in gr_i.iter_mut().zip(&jt) {
-                *gr_ic = sum3(simd, *h_i, *jt_c);
+                *gr_ic = fused_sum3(simd, *h_i, *jt_c);
             }
         }
         set_part::<S>(&mut e[0], p, gr[0][0]);
@@ -137,7 +140,7 @@ pub fn point_forces<S: Simd>(simd: S, geo: &FullGeometry, s: &VoigtLanes) -> [[f
                     part::<S>(&ji[k][1], p),
                     part::<S>(&ji[k][2], p),
                 ];
-                set_part::<S>(&mut pk[i][k], p, simd.mul_f64s(w, sum3(simd, si, jk)));
+                set_part::<S>(&mut pk[i][k], p, simd.mul_f64s(w, fused_sum3(simd, si, jk)));
             }
         }
     }
@@ -157,7 +160,12 @@ pub fn point_forces<S: Simd>(simd: S, geo: &FullGeometry, s: &VoigtLanes) -> [[f
                     simd.splat_f64s(pk[i][1][g]),
                     simd.splat_f64s(pk[i][2][g]),
                 ];
-                *acc_i = simd.add_f64s(*acc_i, sum3(simd, dk, pg));
+                // f_ai + d₀ P_i0 + d₁ P_i1 + d₂ P_i2, three fused multiply-adds in turn
+                *acc_i = simd.mul_add_f64s(
+                    dk[2],
+                    pg[2],
+                    simd.mul_add_f64s(dk[1], pg[1], simd.mul_add_f64s(dk[0], pg[0], *acc_i)),
+                );
             }
         }
         for (fi, acc_i) in f.iter_mut().zip(acc) {

@@ -1,6 +1,7 @@
 //! Internal-force kernels of one hex8 element, elastic material:
 //! - `one_point`: uniform-strain gradient + Flanagan–Belytschko hourglass forces
-//!   (`hex8_uniform::internal_force`);
+//!   (`hex8_uniform::internal_force`, dispatched like the step so that its fused
+//!   multiply-adds are FMA instructions);
 //! - `full`: 2×2×2 Gauss points (`hex8_full::internal_force`);
 //! - `full_lanes`: the same with the eight Gauss points in SIMD lanes
 //!   (`hex8_full_lanes::internal_force` through `InternalForce`, dispatched like the step);
@@ -131,6 +132,61 @@ fn stream_setup() -> (Vec<[u32; 8]>, Vec<[f64; 3]>) {
     (conn, u)
 }
 
+/// One elastic one-point element (`hex8_uniform::internal_force`), inside pulp's dispatch
+/// as the step runs its kernels (so that its fused multiply-adds are FMA instructions).
+struct OnePointForce<'a> {
+    geo: &'a UniformGeometry,
+    material: &'a Material,
+    u: &'a [[f64; 3]; 8],
+    ctx: &'a PointContext,
+    f: &'a mut [[f64; 3]; 8],
+}
+
+impl LaneWork for OnePointForce<'_> {
+    type Output = [f64; 6];
+    #[inline(always)]
+    fn run<S: Simd>(self, _simd: S) -> [f64; 6] {
+        hex8_uniform::internal_force(
+            self.geo,
+            self.material,
+            self.u,
+            &[],
+            &mut [],
+            self.ctx,
+            self.f,
+        )
+    }
+}
+
+/// The sweep of `hex8_one_point/stream_64000`: every element's displacements gathered,
+/// its force computed and scattered, in mesh order, inside one dispatch.
+struct OnePointSweep<'a> {
+    geos: &'a [UniformGeometry],
+    conn: &'a [[u32; 8]],
+    u: &'a [[f64; 3]],
+    material: &'a Material,
+    ctx: &'a PointContext,
+    f_int: &'a mut [[f64; 3]],
+}
+
+impl LaneWork for OnePointSweep<'_> {
+    type Output = ();
+    #[inline(always)]
+    fn run<S: Simd>(self, _simd: S) {
+        for (g, nodes) in self.geos.iter().zip(self.conn) {
+            let ue: [[f64; 3]; 8] = std::array::from_fn(|a| self.u[nodes[a] as usize]);
+            let mut f = [[0.0; 3]; 8];
+            hex8_uniform::internal_force(g, self.material, &ue, &[], &mut [], self.ctx, &mut f);
+            for (a, fa) in f.iter().enumerate() {
+                let p = &mut self.f_int[nodes[a] as usize];
+                p[0] += fa[0];
+                p[1] += fa[1];
+                p[2] += fa[2];
+            }
+        }
+    }
+}
+
 fn one_point(c: &mut Criterion) {
     let mat = material();
     let ctx = context();
@@ -142,15 +198,13 @@ fn one_point(c: &mut Criterion) {
     group.bench_function("single", |b| {
         let mut f = [[0.0; 3]; 8];
         b.iter(|| {
-            let s = hex8_uniform::internal_force(
-                black_box(&geo),
-                &mat,
-                black_box(&u),
-                &[],
-                &mut [],
-                &ctx,
-                &mut f,
-            );
+            let s = run_lane_work(OnePointForce {
+                geo: black_box(&geo),
+                material: &mat,
+                u: black_box(&u),
+                ctx: &ctx,
+                f: &mut f,
+            });
             black_box((&f, s));
         })
     });
@@ -165,17 +219,14 @@ fn one_point(c: &mut Criterion) {
     group.bench_function("stream_64000", |b| {
         let mut f_int = vec![[0.0; 3]; us.len()];
         b.iter(|| {
-            for (g, nodes) in geos.iter().zip(&conn) {
-                let ue: [[f64; 3]; 8] = std::array::from_fn(|a| us[nodes[a] as usize]);
-                let mut f = [[0.0; 3]; 8];
-                hex8_uniform::internal_force(g, &mat, &ue, &[], &mut [], &ctx, &mut f);
-                for (a, fa) in f.iter().enumerate() {
-                    let p = &mut f_int[nodes[a] as usize];
-                    p[0] += fa[0];
-                    p[1] += fa[1];
-                    p[2] += fa[2];
-                }
-            }
+            run_lane_work(OnePointSweep {
+                geos: &geos,
+                conn: &conn,
+                u: &us,
+                material: &mat,
+                ctx: &ctx,
+                f_int: &mut f_int,
+            });
             black_box(&mut f_int);
         })
     });

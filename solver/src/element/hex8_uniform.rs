@@ -28,7 +28,7 @@
 //! for the strain and the hourglass modes, and Γ (entries ±1) costs only additions.
 
 use crate::element::hex8_shape::{cartesian_derivatives, gauss_points, NODE_XI};
-use crate::element::lanes::Lane;
+use crate::element::lanes::{run_lane_work, Lane, LaneWork, Simd};
 use crate::material::{Elastic, Material, PointContext, Voigt};
 use seq_macro::seq;
 
@@ -129,34 +129,43 @@ impl UniformGeometry {
     /// Mean displacement gradient G_ij = Σ_a u_ai b_aj and (Γu)_αi.
     #[inline(always)]
     pub fn gradient_and_modes(&self, u: &[[f64; 3]; 8]) -> GradientAndModes {
-        gradient_and_modes_of(&self.b, u)
+        gradient_and_modes_of(pulp::Scalar::new(), &self.b, u)
     }
 
     /// Hourglass modes q_αi = (Γu)_αi − Σ_j h_αj G_ij from G and Γu.
     #[inline(always)]
     fn modes_from(&self, g: &[[f64; 3]; 3], gu: &[[f64; 3]; 4]) -> [[f64; 3]; 4] {
-        modes_from_of(&self.h, g, gu)
+        modes_from_of(pulp::Scalar::new(), &self.h, g, gu)
     }
 
-    /// Strain ε = Σ_a B_a u_a (Voigt, engineering shear).
+    /// Strain ε = Σ_a B_a u_a (Voigt, engineering shear). Run under the lanes' dispatch
+    /// ([`run_lane_work`]) so that its fused multiply-adds are the CPU's FMA instructions,
+    /// not calls of the C library's `fma`, from any caller (the step's kernels, already
+    /// dispatched, use [`gradient_and_modes_of`]).
     #[inline(always)]
     pub fn strain(&self, u: &[[f64; 3]; 8]) -> Voigt {
+        run_lane_work(Strain { geo: self, u })
+    }
+
+    /// [`Self::strain`] in the instruction set it is compiled for.
+    #[inline(always)]
+    fn strain_fused(&self, u: &[[f64; 3]; 8]) -> Voigt {
         let mut g = [[0.0; 3]; 3];
         for a in 0..8 {
             for i in 0..3 {
                 for j in 0..3 {
-                    g[i][j] += u[a][i] * self.b[a][j];
+                    g[i][j] = u[a][i].mul_add(self.b[a][j], g[i][j]);
                 }
             }
         }
         strain_of(&g)
     }
 
-    /// Hourglass generalised displacements q_αi = Σ_a γ_αa u_ai.
+    /// Hourglass generalised displacements q_αi = Σ_a γ_αa u_ai, under the lanes' dispatch
+    /// like [`Self::strain`].
     #[inline(always)]
     pub fn hourglass_modes(&self, u: &[[f64; 3]; 8]) -> [[f64; 3]; 4] {
-        let (g, gu) = self.gradient_and_modes(u);
-        self.modes_from(&g, &gu)
+        run_lane_work(Modes { geo: self, u })
     }
 
     /// Nodal forces V Bᵀσ + κ Σ_α γ_α q_α, written into `f`.
@@ -169,7 +178,7 @@ impl UniformGeometry {
     /// Nodal forces from σ and κq: f_ai = Σ_j b_aj P_ij + Σ_α Γ_αa (κq)_αi.
     #[inline(always)]
     fn forces_kq(&self, s: &Voigt, kq: &[[f64; 3]; 4], f: &mut [[f64; 3]; 8]) {
-        *f = forces_kq_of(&self.b, &self.h, self.volume, s, kq);
+        *f = forces_kq_of(pulp::Scalar::new(), &self.b, &self.h, self.volume, s, kq);
     }
 
     /// Stiffness-proportional damping force β K0 v (initial elastic stiffness, hourglass
@@ -191,6 +200,35 @@ impl UniformGeometry {
     }
 }
 
+/// [`UniformGeometry::strain`] as the work of its dispatch.
+struct Strain<'a> {
+    geo: &'a UniformGeometry,
+    u: &'a [[f64; 3]; 8],
+}
+
+impl LaneWork for Strain<'_> {
+    type Output = Voigt;
+    #[inline(always)]
+    fn run<S: Simd>(self, _simd: S) -> Voigt {
+        self.geo.strain_fused(self.u)
+    }
+}
+
+/// [`UniformGeometry::hourglass_modes`] as the work of its dispatch.
+struct Modes<'a> {
+    geo: &'a UniformGeometry,
+    u: &'a [[f64; 3]; 8],
+}
+
+impl LaneWork for Modes<'_> {
+    type Output = [[f64; 3]; 4];
+    #[inline(always)]
+    fn run<S: Simd>(self, _simd: S) -> [[f64; 3]; 4] {
+        let (g, gu) = self.geo.gradient_and_modes(self.u);
+        self.geo.modes_from(&g, &gu)
+    }
+}
+
 /// Mean displacement gradient G_ij = Σ_a u_ai b_aj and (Γu)_αi of the mean gradient `b`,
 /// for one element (`f64`) or one element per lane ([`F64s`](crate::element::lanes::F64s)):
 /// the same IEEE operations in the same order either way.
@@ -200,7 +238,8 @@ impl UniformGeometry {
 /// instead of across the lanes (measured, docs/benchmarks.md), and `array::from_fn`
 /// closures holding vector arithmetic were left out of line.
 #[inline(always)]
-pub(crate) fn gradient_and_modes_of<T: Lane>(
+pub(crate) fn gradient_and_modes_of<T: Lane, S: Simd>(
+    simd: S,
     b: &[[T; 3]; 8],
     u: &[[T; 3]; 8],
 ) -> ([[T; 3]; 3], [[T; 3]; 4]) {
@@ -210,10 +249,10 @@ pub(crate) fn gradient_and_modes_of<T: Lane>(
     seq!(A in 0..8 {
         seq!(I in 0..3 {
             seq!(J in 0..3 {
-                g[I][J] = g[I][J] + u[A][I] * b[A][J];
+                g[I][J] = u[A][I].mul_add(simd, b[A][J], g[I][J]);
             });
             seq!(AL in 0..4 {
-                gu[AL][I] = gu[AL][I] + T::splat(GAMMA[AL][A]) * u[A][I];
+                gu[AL][I] = T::splat(GAMMA[AL][A]).mul_add(simd, u[A][I], gu[AL][I]);
             });
         });
     });
@@ -223,7 +262,8 @@ pub(crate) fn gradient_and_modes_of<T: Lane>(
 /// Hourglass modes q_αi = (Γu)_αi − Σ_j h_αj G_ij from G and Γu (generic and unrolled like
 /// [`gradient_and_modes_of`]).
 #[inline(always)]
-pub(crate) fn modes_from_of<T: Lane>(
+pub(crate) fn modes_from_of<T: Lane, S: Simd>(
+    simd: S,
     h: &[[T; 3]; 4],
     g: &[[T; 3]; 3],
     gu: &[[T; 3]; 4],
@@ -231,8 +271,8 @@ pub(crate) fn modes_from_of<T: Lane>(
     let mut q = [[T::splat(0.0); 3]; 4];
     seq!(AL in 0..4 {
         seq!(I in 0..3 {
-            q[AL][I] =
-                gu[AL][I] - (h[AL][0] * g[I][0] + h[AL][1] * g[I][1] + h[AL][2] * g[I][2]);
+            q[AL][I] = gu[AL][I]
+                - h[AL][2].mul_add(simd, g[I][2], h[AL][1].mul_add(simd, g[I][1], h[AL][0] * g[I][0]));
         });
     });
     q
@@ -242,7 +282,8 @@ pub(crate) fn modes_from_of<T: Lane>(
 /// P_ij = V σ_ij − Σ_α h_αj (κq)_αi (the split form of the module doc; generic and unrolled
 /// like [`gradient_and_modes_of`]).
 #[inline(always)]
-pub(crate) fn forces_kq_of<T: Lane>(
+pub(crate) fn forces_kq_of<T: Lane, S: Simd>(
+    simd: S,
     b: &[[T; 3]; 8],
     h: &[[T; 3]; 4],
     volume: T,
@@ -255,19 +296,23 @@ pub(crate) fn forces_kq_of<T: Lane>(
     seq!(I in 0..3 {
         seq!(J in 0..3 {
             p[I][J] = volume * sig[I][J]
-                - (h[0][J] * kq[0][I] + h[1][J] * kq[1][I] + h[2][J] * kq[2][I] + h[3][J] * kq[3][I]);
+                - h[3][J].mul_add(simd,
+                    kq[3][I],
+                    h[2][J].mul_add(simd, kq[2][I], h[1][J].mul_add(simd, kq[1][I], h[0][J] * kq[0][I])),
+                );
         });
     });
     let mut f = [[zero; 3]; 8];
     seq!(A in 0..8 {
         seq!(I in 0..3 {
-            f[A][I] = b[A][0] * p[I][0]
-                + b[A][1] * p[I][1]
-                + b[A][2] * p[I][2]
-                + T::splat(GAMMA[0][A]) * kq[0][I]
-                + T::splat(GAMMA[1][A]) * kq[1][I]
-                + T::splat(GAMMA[2][A]) * kq[2][I]
-                + T::splat(GAMMA[3][A]) * kq[3][I];
+            // b₀p₀, then six fused multiply-adds in the order of the terms
+            let mut t = b[A][0] * p[I][0];
+            t = b[A][1].mul_add(simd, p[I][1], t);
+            t = b[A][2].mul_add(simd, p[I][2], t);
+            t = T::splat(GAMMA[0][A]).mul_add(simd, kq[0][I], t);
+            t = T::splat(GAMMA[1][A]).mul_add(simd, kq[1][I], t);
+            t = T::splat(GAMMA[2][A]).mul_add(simd, kq[2][I], t);
+            f[A][I] = T::splat(GAMMA[3][A]).mul_add(simd, kq[3][I], t);
         });
     });
     f

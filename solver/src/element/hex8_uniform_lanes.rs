@@ -72,7 +72,7 @@ pub fn internal_forces_in_place<S: Simd>(
     states: &mut [&mut [f64]; LANES],
     ctx: &[PointContext; LANES],
 ) -> (NodalLanes, [bool; LANES]) {
-    let (g, gu) = gradient_and_modes_of(&block.b, u);
+    let (g, gu) = gradient_and_modes_of(simd, &block.b, u);
     let mut eps = strain_of(&g);
     if let Some(e0) = eps0 {
         for i in 0..6 {
@@ -86,13 +86,13 @@ pub fn internal_forces_in_place<S: Simd>(
         factor[l] = material.stiffness_factor(states[l]);
     }
     let kappa = block.kappa * factor;
-    let mut kq = modes_from_of(&block.h, &g, &gu);
+    let mut kq = modes_from_of(simd, &block.h, &g, &gu);
     for row in kq.iter_mut() {
         for x in row.iter_mut() {
             *x = kappa * *x;
         }
     }
-    let f = forces_kq_of(&block.b, &block.h, block.volume, &sigma, &kq);
+    let f = forces_kq_of(simd, &block.b, &block.h, block.volume, &sigma, &kq);
     (f, moved)
 }
 

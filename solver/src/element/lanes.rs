@@ -187,9 +187,33 @@ pub fn run_lane_work<W: LaneWork>(work: W) -> W::Output {
 /// passes' closures took 298 s of LLVM's optimisation. With their vector entry points,
 /// that was 572 s of the crate's 603 s, all in one codegen unit. Out of line, the
 /// crate's release build fell from 12.0 to 3.9 min (docs/benchmarks.md, stop 68).
+///
+/// Where the CPU has them, the scalar body is compiled for AVX2 and FMA (x86-64-v3, entered
+/// through pulp's `V3`) while still handed the `Scalar` token: its vectors stay one value
+/// wide, the same operations in the same order, but `f64::mul_add` becomes the `vfmadd`
+/// instruction instead of a call of the C library's `fma` (4.13 against 1.12 ns a
+/// dependent operation, docs/benchmarks.md, stop 69). Both are correctly rounded, so the
+/// bits are the same on every CPU.
 #[inline(never)]
 pub fn run_scalar_work<W: LaneWork>(work: W) -> W::Output {
+    #[cfg(target_arch = "x86_64")]
+    if let Some(v3) = pulp::x86::V3::try_new() {
+        return Simd::vectorize(v3, ScalarIn(work));
+    }
     work.run(pulp::Scalar::new())
+}
+
+/// Scalar work run inside another instruction set's entry point (see [`run_scalar_work`]).
+#[cfg(target_arch = "x86_64")]
+struct ScalarIn<W>(W);
+
+#[cfg(target_arch = "x86_64")]
+impl<W: LaneWork> pulp::WithSimd for ScalarIn<W> {
+    type Output = W::Output;
+    #[inline(always)]
+    fn with_simd<S: Simd>(self, _simd: S) -> W::Output {
+        self.0.run(pulp::Scalar::new())
+    }
 }
 
 /// Run `work` in lanes ([`run_lane_work`]) when `in_lanes`, else in plain scalar code
@@ -320,6 +344,10 @@ pub trait Lane:
     fn max(self, other: Self) -> Self;
     /// `f64::min` (lane by lane).
     fn min(self, other: Self) -> Self;
+    /// `self · a + b` with one rounding (`f64::mul_add`, lane by lane), in the vectors of
+    /// `simd`: the CPU's FMA where the code is compiled for it (under [`run_lane_work`] or
+    /// [`run_scalar_work`]), else a call of the C library's `fma`, with the same bits.
+    fn mul_add<S: Simd>(self, simd: S, a: Self, b: Self) -> Self;
 }
 
 impl Lane for f64 {
@@ -339,6 +367,10 @@ impl Lane for f64 {
     fn min(self, other: Self) -> Self {
         f64::min(self, other)
     }
+    #[inline(always)]
+    fn mul_add<S: Simd>(self, _simd: S, a: Self, b: Self) -> Self {
+        f64::mul_add(self, a, b)
+    }
 }
 
 impl Lane for F64s {
@@ -357,6 +389,17 @@ impl Lane for F64s {
     #[inline(always)]
     fn min(self, other: Self) -> Self {
         F64s::min(self, other)
+    }
+    #[inline(always)]
+    fn mul_add<S: Simd>(self, simd: S, a: Self, b: Self) -> Self {
+        // vector by vector, as the 8-point kernel's sums: left to the compiler, the lane
+        // loop became scalar and 128-bit FMAs with shuffles between them (measured, stop 70)
+        let mut out = F64s::ZERO;
+        for p in 0..parts::<S>() {
+            let v = simd.mul_add_f64s(part::<S>(&self, p), part::<S>(&a, p), part::<S>(&b, p));
+            set_part::<S>(&mut out, p, v);
+        }
+        out
     }
 }
 
@@ -482,5 +525,44 @@ mod tests {
         }
         assert_eq!(run_lane_work(Sum(&x)), expected);
         assert_eq!(Sum(&x).run(pulp::Scalar::new()), expected);
+    }
+
+    /// `Lane::mul_add` rounds once, lane by lane, for eight lanes and for one value, under
+    /// the dispatched instruction set, the scalar path compiled for the CPU
+    /// ([`run_scalar_work`]) and pulp's scalar fallback alike.
+    #[test]
+    fn lane_mul_add_is_one_rounding_on_every_path() {
+        // (1 + 2⁻³⁰)(1 + k 2⁻³⁰) − 1 = (1 + k) 2⁻³⁰ + k 2⁻⁶⁰: the last term is lost when
+        // the product is rounded first.
+        let tiny = (-30f64).exp2();
+        let a = F64s(std::array::from_fn(|_| 1.0 + tiny));
+        let b = F64s(std::array::from_fn(|l| 1.0 + (l + 1) as f64 * tiny));
+        let c = F64s::splat(-1.0);
+        let expected = F64s(std::array::from_fn(|l| a[l].mul_add(b[l], c[l])));
+        let unfused = F64s(std::array::from_fn(|l| a[l] * b[l] + c[l]));
+        for l in 0..LANES {
+            assert_ne!(
+                expected[l], unfused[l],
+                "lane {l} must tell fused from unfused"
+            );
+        }
+        struct MulAdd(F64s, F64s, F64s);
+        impl LaneWork for MulAdd {
+            type Output = (F64s, [f64; LANES]);
+            #[inline(always)]
+            fn run<S: Simd>(self, simd: S) -> Self::Output {
+                let one =
+                    std::array::from_fn(|l| Lane::mul_add(self.0[l], simd, self.1[l], self.2[l]));
+                (Lane::mul_add(self.0, simd, self.1, self.2), one)
+            }
+        }
+        for (path, (lanes, one)) in [
+            ("dispatched", run_lane_work(MulAdd(a, b, c))),
+            ("scalar work", run_scalar_work(MulAdd(a, b, c))),
+            ("scalar token", MulAdd(a, b, c).run(pulp::Scalar::new())),
+        ] {
+            assert_eq!(lanes, expected, "{path}: lanes");
+            assert_eq!(one, expected.0, "{path}: one value at a time");
+        }
     }
 }

@@ -4,6 +4,7 @@
 //! see [`element_max_eigenvalue`]); the global step is the minimum over the elements times
 //! a safety factor. For a cube the eigenvalue bound governs: 0.775 h/c_p (W13).
 
+use crate::element::lanes::{run_lane_work, LaneWork, Simd};
 use crate::mesh::HEX8_FACES;
 
 /// Area of a (possibly warped) quadrilateral face: half the norm of the diagonal product.
@@ -34,7 +35,43 @@ pub fn characteristic_length(x: &[[f64; 3]; 8], volume: f64) -> f64 {
 /// Δt_e = 2/ω_max,e is a step that no mesh containing the element can make unstable —
 /// unlike L/c_p, which a single free element (or a thin body held by contact) violates:
 /// its bound is 0.775 h/c_p for a cube (VERIFICATION.md W13).
+///
+/// Run under the lanes' dispatch ([`run_lane_work`]) so that the element kernels' fused
+/// multiply-adds compile to the CPU's FMA instructions instead of calls of the C library's
+/// `fma` (the same bits either way).
 pub fn element_max_eigenvalue(
+    x: &[[f64; 3]; 8],
+    material: &crate::material::Material,
+    integration: crate::element::Integration,
+    hourglass: f64,
+) -> Option<f64> {
+    run_lane_work(MaxEigenvalue {
+        x,
+        material,
+        integration,
+        hourglass,
+    })
+}
+
+/// [`element_max_eigenvalue`]'s arguments, as the work its dispatch runs.
+struct MaxEigenvalue<'a> {
+    x: &'a [[f64; 3]; 8],
+    material: &'a crate::material::Material,
+    integration: crate::element::Integration,
+    hourglass: f64,
+}
+
+impl LaneWork for MaxEigenvalue<'_> {
+    type Output = Option<f64>;
+    #[inline(always)]
+    fn run<S: Simd>(self, _simd: S) -> Option<f64> {
+        power_iteration(self.x, self.material, self.integration, self.hourglass)
+    }
+}
+
+/// The power iteration of [`element_max_eigenvalue`].
+#[inline(always)]
+fn power_iteration(
     x: &[[f64; 3]; 8],
     material: &crate::material::Material,
     integration: crate::element::Integration,

@@ -271,7 +271,8 @@ pub fn fused_sum3<S: Simd>(simd: S, a: [S::f64s; 3], b: [S::f64s; 3]) -> S::f64s
 /// [`fused_sum3`] of one value: a₂ b₂ + (a₁ b₁ + a₀ b₀) with the last two steps fused.
 /// Correctly rounded on every target; where the code is not compiled for a CPU with FMA,
 /// `mul_add` is a call to the C library's `fma` (≈ 4 ns against 1 ns, measured), so
-/// callers on hot paths run under [`run_lane_work`]'s dispatch.
+/// callers on hot paths run under [`run_lane_work`]'s or [`run_scalar_work`]'s dispatch
+/// (both compile their work for FMA where the CPU has it).
 #[inline(always)]
 pub fn fused_sum3_scalar(a: [f64; 3], b: [f64; 3]) -> f64 {
     a[2].mul_add(b[2], a[1].mul_add(b[1], a[0] * b[0]))

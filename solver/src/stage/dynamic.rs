@@ -46,6 +46,8 @@ use crate::stage::contact_overlap::{ContactPredictor, PredictedNode};
 use crate::stage::energy::{Energies, EnergyParts};
 use crate::stage::subcycling::{Subcycling, SubcyclingSummary};
 
+mod free_node_block;
+
 /// Nodes per chunk of the node loops: fixed, so that reductions are summed in the same
 /// order whatever the number of threads.
 const NODE_CHUNK: usize = 1024;
@@ -513,6 +515,10 @@ impl Simulation {
             f_int: &self.f_int,
             f_damp: &self.f_damp,
             f_ext: &self.f_ext,
+            // f_damp is written only for groups with β > 0 (`internal_forces`) and f_ext
+            // only at loaded nodes (`external_forces`): otherwise they hold zeros.
+            damping_forces: self.group_beta.iter().any(|&b| b > 0.0),
+            external_forces: !self.loads_by_node.nodes().is_empty(),
         };
         // Subcycling: the node levels and one context per level (steps 2^L Δt, full steps
         // only: `can_shorten_steps`).
@@ -617,9 +623,34 @@ impl Simulation {
                 .enumerate()
                 .for_each(|(ci, (((un, vn), an), res))| {
                     let mut out = ChunkResult::default();
-                    for (k, ((ui, vi), ai)) in un.iter_mut().zip(vn.iter_mut()).zip(an).enumerate()
-                    {
-                        let i = ci * NODE_CHUNK + k;
+                    let first = ci * NODE_CHUNK;
+                    // A free node at the finest level that is not in the contact set's
+                    // pre-pass: its runs go through the block predictor.
+                    let free = |i: usize| {
+                        levels.is_none()
+                            && ctx.node_kind[i] == 0
+                            && predicted.is_none_or(|p| p.slot[i] == u32::MAX)
+                    };
+                    let len = un.len();
+                    let mut k = 0;
+                    while k < len {
+                        let i = first + k;
+                        if free(i) {
+                            let start = k;
+                            while k < len && free(first + k) {
+                                k += 1;
+                            }
+                            ctx.predict_free_run(
+                                i,
+                                &mut un[start..k],
+                                &mut vn[start..k],
+                                &mut an[start..k],
+                                &mut out,
+                            );
+                            continue;
+                        }
+                        let (ui, vi, ai) = (&mut un[k], &mut vn[k], &mut an[k]);
+                        k += 1;
                         if let Some(p) = predicted {
                             let j = p.slot[i];
                             if j != u32::MAX {
@@ -1121,6 +1152,10 @@ struct NodeContext<'a> {
     f_int: &'a [[f64; 3]],
     f_damp: &'a [[f64; 3]],
     f_ext: &'a [[f64; 3]],
+    /// Whether `f_damp` may hold a non-zero value (else it is all +0).
+    damping_forces: bool,
+    /// Whether `f_ext` may hold a non-zero value (else it is all +0).
+    external_forces: bool,
 }
 
 impl NodeContext<'_> {
